@@ -1,0 +1,28 @@
+// Annotated images: keypoints with scale and orientation, coloured by octave, the cell grid with
+// each cell's threshold, and a line of text.
+#ifndef ENHANCED_ORB_DRAW_H
+#define ENHANCED_ORB_DRAW_H
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace enhanced_orb {
+
+struct DrawOptions {
+  bool keypoints = true;  // circles of the keypoint's size with a radius along its angle
+  bool grid = false;      // the level-0 cell grid, each cell labelled with its FAST threshold
+  bool text = true;       // `caption` in the top-left corner
+};
+
+// The colour (BGR) of an octave; the palette repeats after eight octaves.
+cv::Scalar octaveColour(int octave);
+
+// Draws onto a BGR copy of `image` (8-bit gray or BGR). `thresholds` may be empty.
+cv::Mat drawAnnotated(const cv::Mat& image, const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& thresholds,
+                      const std::string& caption, const DrawOptions& options = DrawOptions());
+
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_DRAW_H

@@ -1,0 +1,48 @@
+// Section III-A of the paper: gray conversion and image enhancement (Gaussian filter, truncated
+// adaptive gamma, unsharp masking).
+#ifndef ENHANCED_ORB_ENHANCE_H
+#define ENHANCED_ORB_ENHANCE_H
+
+#include <array>
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+#include "enhanced_orb/params.h"
+
+namespace enhanced_orb {
+
+// Pixel layouts the library turns into 8-bit gray.
+enum class PixelFormat { kMono8, kMono16, kBGR, kRGB, kBGRA, kRGBA };
+
+// Converts an image of the given layout to 8-bit gray: colour with the usual luma weights
+// (cv::cvtColor), 16-bit scaled by 1/257. A mono8 input is returned without a copy.
+// Throws std::invalid_argument when the Mat's type does not match `format`.
+cv::Mat toGray(const cv::Mat& image, PixelFormat format);
+
+// Eq 7: lambda, the standard deviation of the image scaled to [0, 1]. 0 for an empty image.
+double imageLambda(const cv::Mat& gray);
+
+// Step 3: whether the image counts as poor quality, by `gamma_mode` and the test on lambda.
+bool isPoorQuality(double lambda, const EnhanceParams& params);
+
+using Histogram = std::array<std::uint32_t, 256>;
+using GammaLut = std::array<float, 256>;
+
+// Eqs 10-16: the truncated adaptive gamma table LUT(i) = 255 (i/255)^gamma_i of a histogram.
+GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau);
+
+struct EnhanceResult {
+  cv::Mat image;              // enhanced 8-bit gray image, same size as the input
+  double lambda = 0.0;        // eq 7, of the input
+  bool poor_quality = false;  // step 3
+  bool inverted = false;      // step 4: worked on the negative of a bright poor image
+};
+
+// The whole enhancement of an 8-bit gray image (ALGORITHM.md section 1). An empty input gives an
+// empty result. Throws std::invalid_argument when `gray` is not CV_8UC1 or `params` is invalid.
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params);
+
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_ENHANCE_H

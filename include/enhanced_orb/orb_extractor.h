@@ -1,0 +1,89 @@
+// ORB with the truncated adaptive threshold: pyramid, per-cell FAST, orientation by intensity
+// centroid, rBRIEF descriptors interchangeable with cv::ORB's, and the two keypoint budgets.
+#ifndef ENHANCED_ORB_ORB_EXTRACTOR_H
+#define ENHANCED_ORB_ORB_EXTRACTOR_H
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+
+#include "enhanced_orb/params.h"
+
+namespace enhanced_orb {
+
+// Keypoints closer than this to a level's border are not detected: the orientation patch
+// (radius 15) and the rotated descriptor pattern (radius < 19) then stay inside the image.
+constexpr int kEdgeThreshold = 19;
+// ORB's patch diameter; a keypoint of octave o has size kPatchSize * scale_factor^o.
+constexpr int kPatchSize = 31;
+// Descriptor length in bytes (256 bits).
+constexpr int kDescriptorBytes = 32;
+
+// Wall-clock time of each stage of one extraction, in milliseconds.
+struct StageTimings {
+  double enhance_ms = 0.0;
+  double pyramid_ms = 0.0;
+  double threshold_ms = 0.0;
+  double fast_ms = 0.0;
+  double select_ms = 0.0;
+  double orientation_ms = 0.0;
+  double descriptor_ms = 0.0;
+
+  double extractMs() const;  // everything after the enhancement
+  double totalMs() const { return enhance_ms + extractMs(); }
+};
+
+struct Extraction {
+  std::vector<cv::KeyPoint> keypoints;    // level-0 coordinates; size, angle (degrees), response, octave
+  cv::Mat descriptors;                    // keypoints.size() x kDescriptorBytes, CV_8U
+  cv::Mat cell_thresholds;                // grid_size x grid_size CV_32S, level 0
+  std::vector<cv::Mat> level_thresholds;  // the same for every pyramid level
+  cv::Mat image;                          // the 8-bit image features were extracted from (enhanced or input)
+  double lambda = 0.0;                    // eq 7 of the input (0 when enhancement is off)
+  bool poor_quality = false;
+  bool inverted = false;
+  StageTimings timings;
+};
+
+// Section II-C: level 0 is `image`, level i is level i-1 resized (INTER_LINEAR_EXACT, as cv::ORB)
+// to round(size / scale_factor^i). Stops early when a level would have no pixel.
+std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double scale_factor);
+
+// FAST-9 with non-maximum suppression, run cell by cell with each cell's threshold from
+// `thresholds` (grid x grid, CV_32S). Each cell's window is widened by 3 pixels so that corners on
+// cell borders are found; a corner belongs to the cell that contains it. Only corners at least
+// kEdgeThreshold from the border are returned, in level coordinates, response = FAST score.
+std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds);
+
+// How a budget of `total` keypoints splits over the levels: geometric with ratio 1/scale_factor
+// (as ORB-SLAM); the last level takes the rounding remainder.
+std::vector<int> levelBudgets(int total, int n_levels, double scale_factor);
+
+// Keeps at most `n` keypoints, spread over the image: keypoints are bucketed in square cells of
+// about sqrt(area / n) pixels, and taken best response first from every cell in turn.
+std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size);
+
+// Eqs 4-6: the angle (degrees, [0, 360)) of each keypoint by the intensity centroid of the
+// circular patch of radius 15 around it. Keypoints whose patch leaves the image get angle 0.
+void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoints);
+
+class OrbExtractor {
+public:
+  // Throws std::invalid_argument, with every offending parameter named, when `params` is invalid.
+  explicit OrbExtractor(const Params& params = Params());
+
+  const Params& params() const { return params_; }
+
+  // Extracts from an 8-bit gray image. An empty image gives an empty result.
+  // Throws std::invalid_argument when `gray` is not CV_8UC1.
+  Extraction extract(const cv::Mat& gray) const;
+
+private:
+  Params params_;
+  cv::Ptr<cv::ORB> describer_;  // OpenCV's rBRIEF: the standard pattern and the 7x7 smoothing
+};
+
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_ORB_EXTRACTOR_H

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs what enhanced_orb needs on Debian 12 (apt packages by name, only those missing) and
+# builds the package standalone into build/ (a catkin devel space). Safe to run again.
+#
+#   bash scripts/setup.sh            install and build
+#   source build/devel/setup.bash    afterwards, for rosrun / roslaunch / rostest
+set -euo pipefail
+# Debian's python3 must come first: catkin needs its catkin_pkg.
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+PACKAGES=(
+  # build
+  build-essential cmake catkin libopencv-dev libgtest-dev libbenchmark-dev
+  libroscpp-dev libnodeletlib-dev libnodelet-dev libimage-transport-dev libcv-bridge-dev librosbag-dev
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure libdiagnostic-updater-dev
+  ros-message-generation ros-message-runtime ros-std-msgs ros-sensor-msgs ros-diagnostic-msgs ros-cmake-modules
+  # run and test
+  rosbash rospack-tools python3-roslaunch python3-rosmaster python3-rostopic python3-rosnode
+  python3-rosservice python3-rosparam python3-rosbag python3-rostest librostest-dev
+  image-transport-tools libnodeletlib-tools python3-rospy python3-sensor-msgs python3-std-msgs
+  python3-numpy python3-opencv python3-cv-bridge python3-matplotlib
+  # demo data, viewer, checks
+  visp-images-data rviz xvfb xauth clang-format catkin-lint
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+echo "setup: building in $ROOT/build"
+cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 >"$ROOT/build.log" 2>&1 \
+  || { tail -n 40 "$ROOT/build.log"; exit 1; }
+make -C "$ROOT/build" -j"$(nproc)" all tests >>"$ROOT/build.log" 2>&1 || { grep -E "error|Error" "$ROOT/build.log" | head -n 40; exit 1; }
+echo "setup: built (log: build.log)"

@@ -1,0 +1,77 @@
+#include <gtest/gtest.h>
+
+#include "enhanced_orb/orb_extractor.h"
+
+using namespace enhanced_orb;
+
+namespace {
+
+std::vector<Params> allModes() {
+  Params improved;
+  Params always;
+  always.enhance.gamma_mode = GammaMode::kAlways;
+  Params budget;
+  budget.orb.max_features = 500;
+  return {improved, always, budget, Params::baseline()};
+}
+
+void expectDefined(const Extraction& r, const cv::Mat& input, const Params& p) {
+  EXPECT_EQ(r.image.size(), input.size());
+  EXPECT_EQ(r.descriptors.rows, static_cast<int>(r.keypoints.size()));
+  EXPECT_EQ(r.descriptors.cols, kDescriptorBytes);
+  ASSERT_EQ(r.cell_thresholds.size(), cv::Size(p.threshold.grid_size, p.threshold.grid_size));
+  EXPECT_EQ(r.cell_thresholds.type(), CV_32S);
+  EXPECT_FALSE(r.level_thresholds.empty());
+}
+
+}  // namespace
+
+TEST(Degenerate, ConstantImagesHaveNoKeypoints) {
+  for (int value : {0, 255, 128}) {
+    const cv::Mat image(480, 752, CV_8UC1, cv::Scalar(value));
+    for (const Params& p : allModes()) {
+      const Extraction r = OrbExtractor(p).extract(image);
+      expectDefined(r, image, p);
+      EXPECT_TRUE(r.keypoints.empty()) << "value " << value;
+      double lo = 0.0, hi = 0.0;
+      cv::minMaxLoc(r.image, &lo, &hi);
+      EXPECT_EQ(lo, hi) << "a constant image stays constant";
+      cv::minMaxLoc(r.cell_thresholds, &lo);
+      EXPECT_GE(lo, p.orb.threshold_mode == ThresholdMode::kFixed ? 20 : p.threshold.c_min);
+    }
+  }
+}
+
+TEST(Degenerate, TinyImages) {
+  // 1x1, smaller than the grid, smaller than the FAST circle, smaller than the edge border.
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(2, 3), cv::Size(4, 4), cv::Size(7, 7), cv::Size(38, 38),
+                              cv::Size(39, 40), cv::Size(1, 500), cv::Size(500, 1)}) {
+    cv::Mat image(size, CV_8UC1);
+    cv::randu(image, 0, 256);
+    for (const Params& p : allModes()) {
+      const Extraction r = OrbExtractor(p).extract(image);
+      expectDefined(r, image, p);
+      if (size.width <= 2 * kEdgeThreshold || size.height <= 2 * kEdgeThreshold) {
+        EXPECT_TRUE(r.keypoints.empty()) << size;
+      }
+    }
+  }
+}
+
+TEST(Degenerate, EmptyImage) {
+  const Extraction r = OrbExtractor().extract(cv::Mat());
+  EXPECT_TRUE(r.keypoints.empty());
+  EXPECT_EQ(r.descriptors.rows, 0);
+  EXPECT_TRUE(r.image.empty());
+}
+
+TEST(Degenerate, NonContinuousRoiInput) {
+  cv::Mat big(600, 900, CV_8UC1);
+  cv::randu(big, 0, 256);
+  const cv::Mat roi = big(cv::Rect(13, 7, 640, 480));
+  const cv::Mat copy = roi.clone();
+  const Extraction a = OrbExtractor().extract(roi);
+  const Extraction b = OrbExtractor().extract(copy);
+  ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
+  EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING), 0.0);
+}

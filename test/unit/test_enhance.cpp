@@ -1,0 +1,212 @@
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "enhanced_orb/enhance.h"
+#include "test_images.h"
+
+using namespace enhanced_orb;
+
+namespace {
+
+// ALGORITHM.md section 1 written out with OpenCV calls, independent of the library's single pass.
+cv::Mat referenceEnhance(const cv::Mat& gray, const EnhanceParams& p, bool poor) {
+  cv::Mat in_f, f, f_rounded;
+  gray.convertTo(in_f, CV_32F);
+  cv::GaussianBlur(in_f, f, cv::Size(p.blur_ksize, p.blur_ksize), p.blur_sigma, p.blur_sigma, cv::BORDER_REFLECT_101);
+  cv::Mat e = in_f + p.sharpening * (in_f - f);  // eq 19
+  if (poor) {
+    f.convertTo(f_rounded, CV_8U);
+    Histogram hist{};
+    for (auto it = f_rounded.begin<uchar>(); it != f_rounded.end<uchar>(); ++it) {
+      ++hist[*it];
+    }
+    const GammaLut lut = truncatedGammaLut(hist, p.alpha, p.tau);
+    cv::Mat lut_mat(1, 256, CV_32F, const_cast<float*>(lut.data()));
+    cv::Mat gamma_f;
+    cv::LUT(f_rounded, lut_mat, gamma_f);
+    e += p.beta * (gamma_f - f);  // eqs 17 and 20
+  }
+  cv::Mat out;
+  e.convertTo(out, CV_8U);
+  return out;
+}
+
+double maxAbsDiff(const cv::Mat& a, const cv::Mat& b) {
+  return cv::norm(a, b, cv::NORM_INF);
+}
+
+cv::Mat darkScene() {
+  cv::Mat dark;
+  test::syntheticScene(cv::Size(160, 120)).convertTo(dark, CV_8U, 0.4);
+  return dark;
+}
+
+}  // namespace
+
+TEST(ToGray, Mono8IsNotCopied) {
+  const cv::Mat image = test::syntheticScene(cv::Size(40, 30));
+  EXPECT_EQ(toGray(image, PixelFormat::kMono8).data, image.data);
+}
+
+TEST(ToGray, Mono16IsScaledBy1Over257) {
+  cv::Mat image(1, 4, CV_16UC1);
+  image.at<uint16_t>(0) = 0;
+  image.at<uint16_t>(1) = 257 * 10;
+  image.at<uint16_t>(2) = 257 * 200;
+  image.at<uint16_t>(3) = 65535;
+  const cv::Mat gray = toGray(image, PixelFormat::kMono16);
+  ASSERT_EQ(gray.type(), CV_8UC1);
+  EXPECT_EQ(gray.at<uchar>(0), 0);
+  EXPECT_EQ(gray.at<uchar>(1), 10);
+  EXPECT_EQ(gray.at<uchar>(2), 200);
+  EXPECT_EQ(gray.at<uchar>(3), 255);
+}
+
+TEST(ToGray, ChannelOrderIsRespected) {
+  // Pure red: luma 0.299 * 255 = 76; pure blue: 0.114 * 255 = 29.
+  const cv::Mat red_bgr(1, 1, CV_8UC3, cv::Scalar(0, 0, 255));
+  EXPECT_EQ(toGray(red_bgr, PixelFormat::kBGR).at<uchar>(0), 76);
+  EXPECT_EQ(toGray(red_bgr, PixelFormat::kRGB).at<uchar>(0), 29);
+  const cv::Mat red_rgba(1, 1, CV_8UC4, cv::Scalar(255, 0, 0, 255));
+  EXPECT_EQ(toGray(red_rgba, PixelFormat::kRGBA).at<uchar>(0), 76);
+  EXPECT_EQ(toGray(red_rgba, PixelFormat::kBGRA).at<uchar>(0), 29);
+}
+
+TEST(ToGray, TypeMismatchThrows) {
+  EXPECT_THROW(toGray(cv::Mat(2, 2, CV_8UC3), PixelFormat::kMono8), std::invalid_argument);
+  EXPECT_THROW(toGray(cv::Mat(2, 2, CV_32FC1), PixelFormat::kMono16), std::invalid_argument);
+  EXPECT_THROW(toGray(cv::Mat(2, 2, CV_8UC1), PixelFormat::kBGRA), std::invalid_argument);
+}
+
+TEST(Lambda, IsTheStandardDeviationOfTheScaledImage) {
+  cv::Mat image(2, 2, CV_8UC1, cv::Scalar(0));
+  image.row(0).setTo(255);
+  EXPECT_NEAR(imageLambda(image), 0.5, 1e-12);  // eq 7: half 0, half 1
+  EXPECT_DOUBLE_EQ(imageLambda(cv::Mat(3, 3, CV_8UC1, cv::Scalar(77))), 0.0);
+  EXPECT_DOUBLE_EQ(imageLambda(cv::Mat()), 0.0);
+}
+
+TEST(Quality, ModesAndThePapersLiteralTest) {
+  EnhanceParams p;
+  EXPECT_TRUE(isPoorQuality(0.30, p));  // lambda > 0.25: "poor", as the paper states it
+  EXPECT_FALSE(isPoorQuality(0.25, p));
+  p.gamma_mode = GammaMode::kAlways;
+  EXPECT_TRUE(isPoorQuality(0.0, p));
+  p.gamma_mode = GammaMode::kNever;
+  EXPECT_FALSE(isPoorQuality(0.5, p));
+}
+
+TEST(GammaLut, ThreeLevelHistogramByHand) {
+  // n = 14: 1 at level 10, 4 at 20, 9 at 30. P_max = 9/14, P_min = 0. With alpha = 0.5 (eq 12)
+  // P_w = 3/14, 6/14, 9/14; their sum 18/14, so C_w = 1/6 on [10, 20), 1/2 on [20, 30), 1 from 30.
+  Histogram h{};
+  h[10] = 1;
+  h[20] = 4;
+  h[30] = 9;
+  const GammaLut lut = truncatedGammaLut(h, 0.5, 0.3);
+  EXPECT_NEAR(lut[5], 5.0, 1e-4);  // C_w = 0 below level 10: gamma 1, the identity
+  EXPECT_NEAR(lut[15], 255.0 * std::pow(15.0 / 255.0, 5.0 / 6.0), 1e-3);
+  EXPECT_NEAR(lut[25], 255.0 * std::pow(25.0 / 255.0, 0.5), 1e-3);
+  EXPECT_NEAR(lut[40], 255.0 * std::pow(40.0 / 255.0, 0.3), 1e-3);  // 1 - C_w = 0 truncated at tau
+  EXPECT_NEAR(lut[255], 255.0, 1e-3);
+}
+
+TEST(GammaLut, FlatHistogramAndTruncationAtTau) {
+  // P_max = P_min: every P_w = P_max (eq 12), so C_wi = (i + 1) / 256.
+  Histogram h;
+  h.fill(10);
+  for (double tau : {0.3, 0.7}) {
+    const GammaLut lut = truncatedGammaLut(h, 0.2, tau);
+    for (int i : {1, 50, 100, 200, 254}) {
+      const double gamma = std::max(tau, 1.0 - (i + 1) / 256.0);
+      EXPECT_NEAR(lut[i], 255.0 * std::pow(i / 255.0, gamma), 1e-3) << "level " << i << ", tau " << tau;
+    }
+  }
+}
+
+TEST(GammaLut, TwoLevelHistogram) {
+  // Half the pixels at 0, half at 255: C_w = 1/2 below 255, so gamma_i = max(tau, 1/2).
+  Histogram h{};
+  h[0] = 50;
+  h[255] = 50;
+  EXPECT_NEAR(truncatedGammaLut(h, 0.2, 0.3)[64], 255.0 * std::sqrt(64.0 / 255.0), 1e-3);
+  EXPECT_NEAR(truncatedGammaLut(h, 0.2, 0.7)[64], 255.0 * std::pow(64.0 / 255.0, 0.7), 1e-3);
+}
+
+TEST(Enhance, NoSharpeningNoMaskIsTheIdentity) {
+  EnhanceParams p;
+  p.sharpening = 0.0;
+  p.beta = 0.0;
+  const cv::Mat dark = darkScene();
+  cv::Mat bright;
+  cv::bitwise_not(dark, bright);
+  for (GammaMode mode : {GammaMode::kAlways, GammaMode::kNever}) {
+    p.gamma_mode = mode;
+    EXPECT_EQ(maxAbsDiff(enhance(dark, p).image, dark), 0.0);
+    EXPECT_EQ(maxAbsDiff(enhance(bright, p).image, bright), 0.0);
+  }
+}
+
+TEST(Enhance, GoodImageIsOnlySharpened) {
+  // Not poor: E = I + sharpening (I - f) whatever beta is (eq 19).
+  EnhanceParams p;
+  p.gamma_mode = GammaMode::kNever;
+  p.beta = 1.5;
+  p.sharpening = 0.0;
+  const cv::Mat image = darkScene();
+  EXPECT_EQ(maxAbsDiff(enhance(image, p).image, image), 0.0);
+  p.sharpening = 1.0;
+  const EnhanceResult r = enhance(image, p);
+  EXPECT_FALSE(r.poor_quality);
+  EXPECT_LE(maxAbsDiff(r.image, referenceEnhance(image, p, false)), 1.0);
+  EXPECT_GT(maxAbsDiff(r.image, image), 10.0);  // sharpening does something on edges
+}
+
+TEST(Enhance, PoorImageMatchesTheEquations) {
+  EnhanceParams p;
+  p.gamma_mode = GammaMode::kAlways;
+  const cv::Mat image = darkScene();
+  const EnhanceResult r = enhance(image, p);
+  EXPECT_TRUE(r.poor_quality);
+  EXPECT_FALSE(r.inverted);
+  EXPECT_LE(maxAbsDiff(r.image, referenceEnhance(image, p, true)), 1.0);
+  EXPECT_GT(cv::mean(r.image)[0], cv::mean(image)[0] + 5.0);  // the gamma brightens a dark image
+}
+
+TEST(Enhance, BrightPoorImageIsInvertedAndBack) {
+  EnhanceParams p;
+  p.gamma_mode = GammaMode::kAlways;
+  const cv::Mat dark = darkScene();
+  cv::Mat bright;
+  cv::bitwise_not(dark, bright);
+  ASSERT_GT(cv::mean(bright)[0], 128.0);
+  const EnhanceResult r = enhance(bright, p);
+  EXPECT_TRUE(r.inverted);
+  cv::Mat expected;
+  cv::bitwise_not(enhance(dark, p).image, expected);  // step 4: enhance the negative, negate back
+  EXPECT_EQ(maxAbsDiff(r.image, expected), 0.0);
+  EXPECT_LT(cv::mean(r.image)[0], cv::mean(bright)[0] - 5.0);  // darkens a bright image
+}
+
+TEST(Enhance, AutoModeFollowsLambda) {
+  EnhanceParams p;
+  const cv::Mat high_contrast = test::syntheticScene(cv::Size(160, 120));
+  const cv::Mat low_contrast = darkScene() * 0.2;
+  const EnhanceResult a = enhance(high_contrast, p);
+  const EnhanceResult b = enhance(low_contrast, p);
+  EXPECT_GT(a.lambda, p.std_threshold);
+  EXPECT_TRUE(a.poor_quality);
+  EXPECT_LT(b.lambda, p.std_threshold);
+  EXPECT_FALSE(b.poor_quality);
+}
+
+TEST(Enhance, BadInput) {
+  EXPECT_TRUE(enhance(cv::Mat(), EnhanceParams()).image.empty());
+  EXPECT_THROW(enhance(cv::Mat(4, 4, CV_8UC3), EnhanceParams()), std::invalid_argument);
+  EnhanceParams bad;
+  bad.tau = 2.0;
+  EXPECT_THROW(enhance(darkScene(), bad), std::invalid_argument);
+}

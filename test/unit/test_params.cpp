@@ -1,0 +1,107 @@
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "enhanced_orb/params.h"
+
+using namespace enhanced_orb;
+
+namespace {
+
+// The single message of a validation that must fail on one parameter.
+std::string onlyMessage(const std::vector<std::string>& messages) {
+  EXPECT_EQ(messages.size(), 1u);
+  return messages.empty() ? "" : messages.front();
+}
+
+}  // namespace
+
+TEST(Params, DefaultsAreThePapersAndValid) {
+  const Params p;
+  EXPECT_DOUBLE_EQ(p.enhance.alpha, 0.2);
+  EXPECT_DOUBLE_EQ(p.enhance.tau, 0.3);
+  EXPECT_DOUBLE_EQ(p.enhance.beta, 0.3);
+  EXPECT_DOUBLE_EQ(p.enhance.sharpening, 1.0);
+  EXPECT_EQ(p.enhance.blur_ksize, 5);
+  EXPECT_DOUBLE_EQ(p.enhance.blur_sigma, 1.0);
+  EXPECT_DOUBLE_EQ(p.enhance.std_threshold, 0.25);
+  EXPECT_EQ(p.enhance.gamma_mode, GammaMode::kAuto);
+  EXPECT_EQ(p.threshold.grid_size, 5);
+  EXPECT_DOUBLE_EQ(p.threshold.threshold_scale, 0.3);
+  EXPECT_EQ(p.threshold.c_min, 7);
+  EXPECT_EQ(p.orb.fast_threshold, 20);
+  EXPECT_EQ(p.orb.max_features, 0);
+  EXPECT_TRUE(p.enhance_enabled);
+  EXPECT_EQ(p.orb.threshold_mode, ThresholdMode::kAdaptive);
+  EXPECT_TRUE(validate(p).empty()) << joinMessages(validate(p));
+}
+
+TEST(Params, BaselineIsFixedThresholdWithoutEnhancement) {
+  const Params p = Params::baseline();
+  EXPECT_FALSE(p.enhance_enabled);
+  EXPECT_EQ(p.orb.threshold_mode, ThresholdMode::kFixed);
+  EXPECT_EQ(p.orb.fast_threshold, 20);
+  EXPECT_EQ(Params::baseline(35).orb.fast_threshold, 35);
+  EXPECT_TRUE(validate(p).empty());
+}
+
+TEST(Params, MessageNamesParameterValueAndRange) {
+  EnhanceParams e;
+  e.alpha = 1.5;
+  EXPECT_EQ(onlyMessage(validate(e)), "alpha = 1.5 is out of range [0, 1]");
+  ThresholdParams t;
+  t.c_min = 0;
+  EXPECT_EQ(onlyMessage(validate(t)), "c_min = 0 is out of range [1, 200]");
+  OrbParams o;
+  o.scale_factor = 1.0;
+  EXPECT_EQ(onlyMessage(validate(o)), "scale_factor = 1 is out of range [1.01, 2]");
+}
+
+TEST(Params, EveryOutOfRangeValueIsRejected) {
+  auto rejects = [](auto mutate, const std::string& name) {
+    Params p;
+    mutate(p);
+    const std::string all = joinMessages(validate(p));
+    EXPECT_NE(all.find(name), std::string::npos) << "expected a message about " << name << ", got '" << all << "'";
+  };
+  rejects([](Params& p) { p.enhance.alpha = -0.1; }, "alpha");
+  rejects([](Params& p) { p.enhance.tau = 1.01; }, "tau");
+  rejects([](Params& p) { p.enhance.beta = -1; }, "beta");
+  rejects([](Params& p) { p.enhance.sharpening = 6; }, "sharpening");
+  rejects([](Params& p) { p.enhance.blur_ksize = 33; }, "blur_ksize");
+  rejects([](Params& p) { p.enhance.blur_ksize = 4; }, "blur_ksize = 4 must be odd");
+  rejects([](Params& p) { p.enhance.blur_sigma = 0; }, "blur_sigma");
+  rejects([](Params& p) { p.enhance.std_threshold = 2; }, "std_threshold");
+  rejects([](Params& p) { p.threshold.grid_size = 0; }, "grid_size");
+  rejects([](Params& p) { p.threshold.threshold_scale = 3; }, "threshold_scale");
+  rejects([](Params& p) { p.threshold.c_min = 201; }, "c_min");
+  rejects([](Params& p) { p.orb.fast_threshold = 0; }, "fast_threshold");
+  rejects([](Params& p) { p.orb.max_features = -1; }, "max_features");
+  rejects([](Params& p) { p.orb.n_levels = 17; }, "n_levels");
+  rejects([](Params& p) { p.orb.scale_factor = 2.5; }, "scale_factor");
+}
+
+TEST(Params, NotANumberIsRejected) {
+  Params p;
+  p.enhance.beta = std::numeric_limits<double>::quiet_NaN();
+  p.orb.scale_factor = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validate(p).size(), 2u);
+}
+
+TEST(Params, ModeNamesRoundTrip) {
+  for (GammaMode m : {GammaMode::kAuto, GammaMode::kAlways, GammaMode::kNever}) {
+    GammaMode parsed = GammaMode::kAuto;
+    ASSERT_TRUE(parseGammaMode(toString(m), parsed));
+    EXPECT_EQ(parsed, m);
+  }
+  for (ThresholdMode m : {ThresholdMode::kAdaptive, ThresholdMode::kFixed}) {
+    ThresholdMode parsed = ThresholdMode::kAdaptive;
+    ASSERT_TRUE(parseThresholdMode(toString(m), parsed));
+    EXPECT_EQ(parsed, m);
+  }
+  GammaMode unchanged = GammaMode::kNever;
+  EXPECT_FALSE(parseGammaMode("sometimes", unchanged));
+  EXPECT_EQ(unchanged, GammaMode::kNever);
+}
