@@ -19,9 +19,11 @@ struct DrawOptions {
 // The colour (BGR) of an octave; the palette repeats after eight octaves.
 cv::Scalar octaveColour(int octave);
 
-// Draws onto a BGR copy of `image` (8-bit gray or BGR). `thresholds` may be empty.
+// Draws onto a BGR copy of `image` (8-bit gray or BGR). `thresholds` may be empty. `canvas`, when
+// it has the image's size and type CV_8UC3, receives the drawing in place (a message buffer, say).
 cv::Mat drawAnnotated(const cv::Mat& image, const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& thresholds,
-                      const std::string& caption, const DrawOptions& options = DrawOptions());
+                      const std::string& caption, const DrawOptions& options = DrawOptions(),
+                      cv::Mat canvas = cv::Mat());
 
 }  // namespace enhanced_orb
 

@@ -41,7 +41,9 @@ struct EnhanceResult {
 
 // The whole enhancement of an 8-bit gray image (ALGORITHM.md section 1). An empty input gives an
 // empty result. Throws std::invalid_argument when `gray` is not CV_8UC1 or `params` is invalid.
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params);
+// `output`, when it has the input's size and type CV_8UC1, receives the result in place (a view of
+// a message buffer, say); otherwise a new image is allocated. It may be `gray` itself.
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output = cv::Mat());
 
 }  // namespace enhanced_orb
 

@@ -17,15 +17,14 @@ cv::Scalar octaveColour(int octave) {
 }
 
 cv::Mat drawAnnotated(const cv::Mat& image, const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& thresholds,
-                      const std::string& caption, const DrawOptions& options) {
-  cv::Mat canvas;
+                      const std::string& caption, const DrawOptions& options, cv::Mat canvas) {
+  if (image.empty()) {
+    return cv::Mat();
+  }
   if (image.channels() == 1) {
     cv::cvtColor(image, canvas, cv::COLOR_GRAY2BGR);
   } else {
-    canvas = image.clone();
-  }
-  if (canvas.empty()) {
-    return canvas;
+    image.copyTo(canvas);
   }
   if (options.grid && !thresholds.empty()) {
     const int grid = thresholds.rows;
@@ -44,8 +43,8 @@ cv::Mat drawAnnotated(const cv::Mat& image, const std::vector<cv::KeyPoint>& key
       const float radius = kp.size / 2.0f;
       const float angle = kp.angle * static_cast<float>(CV_PI / 180.0);
       const cv::Point2f tip = kp.pt + radius * cv::Point2f(std::cos(angle), std::sin(angle));
-      cv::circle(canvas, kp.pt, cvRound(radius), colour, 1, cv::LINE_AA);
-      cv::line(canvas, kp.pt, tip, colour, 1, cv::LINE_AA);
+      cv::circle(canvas, kp.pt, cvRound(radius), colour, 1, cv::LINE_8);
+      cv::line(canvas, kp.pt, tip, colour, 1, cv::LINE_8);
     }
   }
   if (options.text && !caption.empty()) {

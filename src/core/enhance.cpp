@@ -112,7 +112,7 @@ GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau)
   return lut;
 }
 
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output) {
   if (!gray.empty() && gray.type() != CV_8UC1) {
     throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
   }
@@ -160,7 +160,8 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
   // E = I + sharpening G_mask + beta T_mask (eqs 19-20; T_mask only for poor images).
   const float s = static_cast<float>(params.sharpening);
   const float b = result.poor_quality ? static_cast<float>(params.beta) : 0.0f;
-  result.image.create(gray.size(), CV_8UC1);
+  result.image = output;
+  result.image.create(gray.size(), CV_8UC1);  // keeps `output`'s buffer when it fits
   for (int y = 0; y < gray.rows; ++y) {
     const std::uint8_t* in = input.ptr<std::uint8_t>(y);
     const float* fr = f.ptr<float>(y);

@@ -1,0 +1,97 @@
+// enhanced_orb/EnhanceNodelet: image -> image_enhanced (mono8, same header), section III-A.
+#include <memory>
+#include <mutex>
+
+#include <dynamic_reconfigure/server.h>
+#include <sensor_msgs/image_encodings.h>
+#include <boost/make_shared.hpp>
+#include <pluginlib/class_list_macros.hpp>
+
+#include "enhanced_orb/EnhanceConfig.h"
+#include "enhanced_orb/enhance.h"
+#include "image_nodelet.h"
+
+namespace enhanced_orb {
+
+class EnhanceNodelet : public ImageNodelet {
+private:
+  void advertiseOutputs() override {
+    pub_ = transport().advertise("image_enhanced", 1, connectCallback(), connectCallback());
+    address_pub_ = advertiseAddress("output_address");
+    server_ = std::make_unique<dynamic_reconfigure::Server<EnhanceConfig>>(config_mutex_, getPrivateNodeHandle());
+    server_->setCallback([this](EnhanceConfig& config, uint32_t) { reconfigure(config); });
+  }
+
+  bool outputsHaveSubscribers() const override { return pub_.getNumSubscribers() > 0; }
+
+  void reconfigure(EnhanceConfig& config) {
+    if (config.blur_ksize % 2 == 0) {
+      NODELET_WARN("blur_ksize = %d must be odd; using %d", config.blur_ksize, config.blur_ksize + 1);
+      config.blur_ksize += 1;
+    }
+    EnhanceParams p;
+    p.alpha = config.alpha;
+    p.tau = config.tau;
+    p.beta = config.beta;
+    p.sharpening = config.sharpening;
+    p.blur_ksize = config.blur_ksize;
+    p.blur_sigma = config.blur_sigma;
+    p.std_threshold = config.std_threshold;
+    if (!parseGammaMode(config.gamma_mode, p.gamma_mode)) {
+      NODELET_WARN("gamma_mode '%s' is not auto, always or never; keeping '%s'", config.gamma_mode.c_str(),
+                   toString(params_.gamma_mode));
+      p.gamma_mode = params_.gamma_mode;
+    }
+    const std::vector<std::string> problems = validate(p);
+    if (!problems.empty()) {
+      NODELET_WARN("parameters rejected, keeping the previous ones: %s", joinMessages(problems).c_str());
+      return;
+    }
+    std::lock_guard<std::mutex> lock(params_mutex_);
+    params_ = p;
+    enabled_ = config.enabled;
+  }
+
+  void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
+    EnhanceParams params;
+    bool enabled = true;
+    {
+      std::lock_guard<std::mutex> lock(params_mutex_);
+      params = params_;
+      enabled = enabled_;
+    }
+    if (!enabled && msg->encoding == sensor_msgs::image_encodings::MONO8) {
+      pub_.publish(msg);  // nothing to do: hand on the very same message
+      publishAddress(address_pub_, msg.get());
+      return;
+    }
+    // Build the output in its message, so that it is published without a copy.
+    auto out = boost::make_shared<sensor_msgs::Image>();
+    out->header = msg->header;
+    out->encoding = sensor_msgs::image_encodings::MONO8;
+    out->height = static_cast<uint32_t>(gray.rows);
+    out->width = static_cast<uint32_t>(gray.cols);
+    out->step = out->width;
+    out->data.resize(static_cast<size_t>(out->step) * out->height);
+    cv::Mat view(gray.rows, gray.cols, CV_8UC1, out->data.data(), out->step);
+    if (enabled) {
+      enhance(gray, params, view);
+    } else {
+      gray.copyTo(view);
+    }
+    pub_.publish(out);
+    publishAddress(address_pub_, out.get());
+  }
+
+  image_transport::Publisher pub_;
+  ros::Publisher address_pub_;
+  boost::recursive_mutex config_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<EnhanceConfig>> server_;
+  std::mutex params_mutex_;
+  EnhanceParams params_;
+  bool enabled_ = true;
+};
+
+}  // namespace enhanced_orb
+
+PLUGINLIB_EXPORT_CLASS(enhanced_orb::EnhanceNodelet, nodelet::Nodelet)

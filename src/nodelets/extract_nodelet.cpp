@@ -1,0 +1,106 @@
+// enhanced_orb/ExtractNodelet: image -> keypoints (KeypointArray) and image_annotated (bgr8),
+// ORB with the truncated adaptive threshold (section III-B) or the original fixed threshold.
+#include <iomanip>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+#include <dynamic_reconfigure/server.h>
+#include <sensor_msgs/image_encodings.h>
+#include <boost/make_shared.hpp>
+#include <pluginlib/class_list_macros.hpp>
+
+#include "enhanced_orb/ExtractConfig.h"
+#include "enhanced_orb/draw.h"
+#include "enhanced_orb/orb_extractor.h"
+#include "enhanced_orb/ros/conversions.h"
+#include "image_nodelet.h"
+
+namespace enhanced_orb {
+
+class ExtractNodelet : public ImageNodelet {
+private:
+  void advertiseOutputs() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", 1, connectCallbackRos(), connectCallbackRos());
+    annotated_pub_ = transport().advertise("image_annotated", 1, connectCallback(), connectCallback());
+    address_pub_ = advertiseAddress("input_address");
+    server_ = std::make_unique<dynamic_reconfigure::Server<ExtractConfig>>(config_mutex_, getPrivateNodeHandle());
+    server_->setCallback([this](ExtractConfig& config, uint32_t) { reconfigure(config); });
+  }
+
+  bool outputsHaveSubscribers() const override {
+    return keypoints_pub_.getNumSubscribers() > 0 || annotated_pub_.getNumSubscribers() > 0;
+  }
+
+  void reconfigure(const ExtractConfig& config) {
+    // The input is enhanced upstream (EnhanceNodelet) or deliberately raw (the baseline).
+    Params p;
+    p.enhance_enabled = false;
+    p.threshold.c_min = config.c_min;
+    p.threshold.threshold_scale = config.threshold_scale;
+    p.threshold.grid_size = config.grid_size;
+    p.orb.fast_threshold = config.fast_threshold;
+    p.orb.max_features = config.max_features;
+    p.orb.n_levels = config.n_levels;
+    p.orb.scale_factor = config.scale_factor;
+    if (!parseThresholdMode(config.threshold_mode, p.orb.threshold_mode)) {
+      NODELET_WARN("threshold_mode '%s' is not adaptive or fixed; keeping the previous parameters",
+                   config.threshold_mode.c_str());
+      return;
+    }
+    std::shared_ptr<const OrbExtractor> extractor;
+    try {
+      extractor = std::make_shared<const OrbExtractor>(p);
+    } catch (const std::invalid_argument& e) {
+      NODELET_WARN("parameters rejected, keeping the previous ones: %s", e.what());
+      return;
+    }
+    std::lock_guard<std::mutex> lock(params_mutex_);
+    extractor_ = extractor;
+    draw_ = DrawOptions{config.draw_keypoints, config.draw_grid, config.draw_text};
+  }
+
+  void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
+    publishAddress(address_pub_, msg.get());
+    std::shared_ptr<const OrbExtractor> extractor;
+    DrawOptions draw;
+    {
+      std::lock_guard<std::mutex> lock(params_mutex_);
+      extractor = extractor_;
+      draw = draw_;
+    }
+    const Extraction result = extractor->extract(gray);
+    if (keypoints_pub_.getNumSubscribers() > 0) {
+      keypoints_pub_.publish(toMessage(result, msg->header, extractor->params()));
+    }
+    if (annotated_pub_.getNumSubscribers() > 0) {
+      auto out = boost::make_shared<sensor_msgs::Image>();
+      out->header = msg->header;
+      out->encoding = sensor_msgs::image_encodings::BGR8;
+      out->height = static_cast<uint32_t>(gray.rows);
+      out->width = static_cast<uint32_t>(gray.cols);
+      out->step = out->width * 3;
+      out->data.resize(static_cast<size_t>(out->step) * out->height);
+      std::ostringstream caption;
+      caption << result.keypoints.size() << " keypoints  " << std::fixed << std::setprecision(1)
+              << result.timings.extractMs() << " ms  (" << toString(extractor->params().orb.threshold_mode) << ")";
+      drawAnnotated(result.image, result.keypoints, result.cell_thresholds, caption.str(), draw,
+                    cv::Mat(gray.rows, gray.cols, CV_8UC3, out->data.data(), out->step));
+      annotated_pub_.publish(out);
+    }
+  }
+
+  ros::Publisher keypoints_pub_;
+  image_transport::Publisher annotated_pub_;
+  ros::Publisher address_pub_;
+  boost::recursive_mutex config_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<ExtractConfig>> server_;
+  std::mutex params_mutex_;
+  std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>();
+  DrawOptions draw_;
+};
+
+}  // namespace enhanced_orb
+
+PLUGINLIB_EXPORT_CLASS(enhanced_orb::ExtractNodelet, nodelet::Nodelet)

@@ -1,0 +1,137 @@
+#include "image_nodelet.h"
+
+#include <chrono>
+#include <exception>
+
+#include "enhanced_orb/ros/conversions.h"
+
+namespace enhanced_orb {
+
+void ImageNodelet::onInit() {
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  pnh.param("queue_size", queue_size_, 5);
+  if (queue_size_ < 1) {
+    NODELET_WARN("~queue_size = %d is out of range [1, inf); using 1", queue_size_);
+    queue_size_ = 1;
+  }
+  pnh.param("debug_addresses", debug_addresses_, false);
+
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
+  updater_->setHardwareID("none");
+  updater_->add("processing", this, &ImageNodelet::diagnose);
+  window_start_ = ros::WallTime::now();
+  diagnostics_timer_ =
+      nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
+
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  advertiseOutputs();
+}
+
+image_transport::SubscriberStatusCallback ImageNodelet::connectCallback() {
+  return [this](const image_transport::SingleSubscriberPublisher&) { connect(); };
+}
+
+ros::SubscriberStatusCallback ImageNodelet::connectCallbackRos() {
+  return [this](const ros::SingleSubscriberPublisher&) { connect(); };
+}
+
+void ImageNodelet::connect() {
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const bool wanted = outputsHaveSubscribers();
+  if (wanted && !sub_) {
+    const image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+    sub_ = it_->subscribe("image", static_cast<uint32_t>(queue_size_), &ImageNodelet::imageCallback, this, hints);
+    NODELET_DEBUG("subscribed to %s", sub_.getTopic().c_str());
+  } else if (!wanted && sub_) {
+    NODELET_DEBUG("no subscriber left: unsubscribing %s", sub_.getTopic().c_str());
+    sub_.shutdown();
+  }
+}
+
+void ImageNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
+  const GrayImage input = toGrayImage(msg);
+  if (!input.error.empty()) {
+    warnThrottled(input.reason, input.error);
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++rejected_;
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  bool ok = false;
+  try {
+    process(msg, input.gray);
+    ok = true;
+  } catch (const std::exception& e) {
+    warnThrottled("exception", std::string("processing failed, image dropped: ") + e.what());
+  } catch (...) {
+    warnThrottled("exception", "processing failed with an unknown exception, image dropped");
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  if (ok) {
+    ++processed_;
+    total_ms_ += ms;
+    max_ms_ = std::max(max_ms_, ms);
+  } else {
+    ++failed_;
+  }
+}
+
+void ImageNodelet::warnThrottled(const std::string& reason, const std::string& message) {
+  const ros::WallTime now = ros::WallTime::now();
+  {
+    std::lock_guard<std::mutex> lock(log_mutex_);
+    auto it = last_warning_.find(reason);
+    if (it != last_warning_.end() && (now - it->second).toSec() < 5.0) {
+      return;
+    }
+    last_warning_[reason] = now;
+  }
+  NODELET_WARN("%s", message.c_str());
+}
+
+ros::Publisher ImageNodelet::advertiseAddress(const std::string& topic) {
+  return debug_addresses_ ? getPrivateNodeHandle().advertise<std_msgs::UInt64>("debug/" + topic, 100)
+                          : ros::Publisher();
+}
+
+void ImageNodelet::publishAddress(ros::Publisher& pub, const void* address) {
+  if (pub) {
+    std_msgs::UInt64 msg;
+    msg.data = reinterpret_cast<std::uint64_t>(address);
+    pub.publish(msg);
+  }
+}
+
+void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  bool subscribed = false;
+  {
+    std::lock_guard<std::mutex> lock(connect_mutex_);
+    subscribed = static_cast<bool>(sub_);
+  }
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  const ros::WallTime now = ros::WallTime::now();
+  const double seconds = std::max(1e-6, (now - window_start_).toSec());
+  status.add("frames per second", processed_ / seconds);
+  status.add("mean processing time [ms]", processed_ ? total_ms_ / processed_ : 0.0);
+  status.add("max processing time [ms]", max_ms_);
+  status.add("frames rejected (bad input)", rejected_);
+  status.add("frames failed", failed_);
+  status.add("input subscribed", subscribed);
+  if (failed_ > 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "processing failed on some frames");
+  } else if (rejected_ > 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "some input frames were rejected");
+  } else if (!subscribed) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "idle: no subscriber on the outputs");
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  }
+  window_start_ = now;
+  processed_ = rejected_ = failed_ = 0;
+  total_ms_ = max_ms_ = 0.0;
+}
+
+}  // namespace enhanced_orb

@@ -1,0 +1,75 @@
+// Plumbing shared by the package's nodelets: one input image subscribed lazily, ~queue_size and
+// transport hints, input checks with throttled warnings, diagnostics of rate and processing time.
+#ifndef ENHANCED_ORB_IMAGE_NODELET_H
+#define ENHANCED_ORB_IMAGE_NODELET_H
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/UInt64.h>
+#include <opencv2/core.hpp>
+
+namespace enhanced_orb {
+
+class ImageNodelet : public nodelet::Nodelet {
+protected:
+  // Advertises the outputs, giving each connectCallback() (image_transport) or
+  // connectCallbackRos() (plain topics) as its connect callback, and starts reconfiguration.
+  // Runs with the connect mutex held, so no connect callback sees half-made publishers.
+  virtual void advertiseOutputs() = 0;
+  // Whether any output has a subscriber; the input is subscribed only while one has.
+  virtual bool outputsHaveSubscribers() const = 0;
+  // Processes one valid input; `gray` is the input as 8-bit gray (it may share `msg`'s buffer).
+  // Exceptions are caught, logged and counted by the caller.
+  virtual void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) = 0;
+
+  image_transport::SubscriberStatusCallback connectCallback();
+  ros::SubscriberStatusCallback connectCallbackRos();
+
+  // Logs `message` as a warning at most every 5 s for each `reason`; a new reason logs at once.
+  void warnThrottled(const std::string& reason, const std::string& message);
+
+  // With ~debug_addresses, publishes the address of a message on ~debug/<topic> (UInt64), so that
+  // a test in the same process can prove that messages pass between nodelets without a copy.
+  void publishAddress(ros::Publisher& pub, const void* address);
+  ros::Publisher advertiseAddress(const std::string& topic);
+
+  image_transport::ImageTransport& transport() { return *it_; }
+
+private:
+  void onInit() final;
+  void connect();
+  void imageCallback(const sensor_msgs::ImageConstPtr& msg);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  std::unique_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber sub_;
+  std::mutex connect_mutex_;
+  int queue_size_ = 5;
+  bool debug_addresses_ = false;
+
+  std::mutex log_mutex_;
+  std::map<std::string, ros::WallTime> last_warning_;
+
+  // Diagnostics over the last period.
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diagnostics_timer_;
+  std::mutex stats_mutex_;
+  ros::WallTime window_start_;
+  int processed_ = 0;
+  int rejected_ = 0;
+  int failed_ = 0;
+  double total_ms_ = 0.0;
+  double max_ms_ = 0.0;
+};
+
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_IMAGE_NODELET_H

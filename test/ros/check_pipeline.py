@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""Every KeypointArray of the running pipeline is consistent with the image it came from."""
+import collections
+import unittest
+
+import rospy
+import rostest
+from sensor_msgs.msg import Image
+
+from enhanced_orb.msg import KeypointArray
+
+MESSAGES = 40  # per output
+
+
+class PipelineConsistency(unittest.TestCase):
+    def setUp(self):
+        self.images = {}  # stamp -> (width, height)
+        self.outputs = collections.defaultdict(list)
+        rospy.Subscriber("/cam0/image_raw", Image, self.on_image, queue_size=50)
+        for name in ("/cam0/keypoints", "/cam0/baseline/keypoints"):
+            rospy.Subscriber(name, KeypointArray, self.on_keypoints, callback_args=name, queue_size=50)
+
+    def on_image(self, msg):
+        self.images[msg.header.stamp] = (msg.width, msg.height)
+
+    def on_keypoints(self, msg, name):
+        self.outputs[name].append(msg)
+
+    def wait_for_messages(self):
+        deadline = rospy.Time.now() + rospy.Duration(60)
+        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+            if all(len(self.outputs[n]) >= MESSAGES for n in ("/cam0/keypoints", "/cam0/baseline/keypoints")):
+                return
+            rospy.sleep(0.1)
+        self.fail("too few KeypointArrays: %s" % {n: len(m) for n, m in self.outputs.items()})
+
+    def check_common(self, msg):
+        self.assertIn(msg.header.stamp, self.images, "stamp %s is no input image's" % msg.header.stamp)
+        self.assertEqual(msg.header.frame_id, "cam0")
+        self.assertEqual((msg.width, msg.height), self.images[msg.header.stamp])
+        self.assertEqual(msg.descriptor_bytes, 32)
+        self.assertEqual(len(msg.descriptors), 32 * len(msg.keypoints))
+        self.assertEqual(msg.grid_size, 5)
+        self.assertEqual(len(msg.cell_thresholds), 25)
+        self.assertEqual(msg.n_levels, 8)
+        for kp in msg.keypoints:
+            self.assertTrue(0 <= kp.x < msg.width and 0 <= kp.y < msg.height, "keypoint outside the image")
+            self.assertTrue(0 <= kp.octave < msg.n_levels)
+            self.assertTrue(0.0 <= kp.angle < 360.0)
+
+    def test_every_message_is_consistent(self):
+        self.wait_for_messages()
+        rospy.sleep(0.5)  # let the input stamps of the last outputs arrive too
+        improved = {m.header.stamp: m for m in self.outputs["/cam0/keypoints"]}
+        baseline = {m.header.stamp: m for m in self.outputs["/cam0/baseline/keypoints"]}
+        for msg in improved.values():
+            self.check_common(msg)
+            self.assertEqual(msg.threshold_mode, "adaptive")
+            self.assertTrue(all(t >= 7 for t in msg.cell_thresholds), msg.cell_thresholds)
+            self.assertGreater(len(msg.keypoints), 0)
+        for msg in baseline.values():
+            self.check_common(msg)
+            self.assertEqual(msg.threshold_mode, "fixed")
+            self.assertTrue(all(t == 20 for t in msg.cell_thresholds), msg.cell_thresholds)
+        common = set(improved) & set(baseline)
+        self.assertGreater(len(common), 10)
+        for stamp in common:
+            self.assertGreater(len(improved[stamp].keypoints), len(baseline[stamp].keypoints))
+
+
+if __name__ == "__main__":
+    rospy.init_node("check_pipeline")
+    rostest.rosrun("enhanced_orb", "check_pipeline", PipelineConsistency)
