@@ -41,3 +41,8 @@ cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE
   || { tail -n 40 "$ROOT/build.log"; exit 1; }
 make -C "$ROOT/build" -j"$(nproc)" all tests >>"$ROOT/build.log" 2>&1 || { grep -E "error|Error" "$ROOT/build.log" | head -n 40; exit 1; }
 echo "setup: built (log: build.log)"
+
+# The embedded demo bag is built here, not committed.
+if [ ! -f "$ROOT/bags/demo.bag" ]; then
+  python3 "$ROOT/bags/make_demo_bag.py" "$ROOT/bags/demo.bag"
+fi
