@@ -3,7 +3,7 @@
 darkened to 35 % of its brightness, run through enhanced_orb_extract as the enhanced ORB and as
 the original ORB, side by side.
 
-  python3 docs/make_figure.py [--tool build/devel/lib/enhanced_orb/enhanced_orb_extract]
+  python3 docs/make_figure.py [--tool devel/lib/enhanced_orb/enhanced_orb_extract]
 """
 import argparse
 import os
@@ -35,7 +35,7 @@ def scene(width=752, height=480, seed=11):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--tool", default="build/devel/lib/enhanced_orb/enhanced_orb_extract")
+    parser.add_argument("--tool", default="devel/lib/enhanced_orb/enhanced_orb_extract")
     parser.add_argument("--output", default=os.path.join(os.path.dirname(__file__), "annotated.jpg"))
     args = parser.parse_args()
     dark = np.clip(np.rint(scene() * 0.35), 0, 255).astype(np.uint8)

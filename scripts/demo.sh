@@ -28,7 +28,7 @@ bash "$ROOT/scripts/setup.sh"
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 set +u
 # shellcheck disable=SC1091
-source "$ROOT/build/devel/setup.bash"
+source "$ROOT/devel/setup.bash"
 set -u
 
 if [ ! -f "$BAG" ]; then  # setup.sh makes the demo bag; another bag must exist

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs what enhanced_orb needs on Debian 12 (apt packages by name, only those missing) and
-# builds the package standalone into build/ (a catkin devel space). Safe to run again.
+# builds the package standalone: build files in build/, the catkin devel space in devel/ (so that
+# rosrun finds the executables). Safe to run again.
 #
 #   bash scripts/setup.sh            install and build
-#   source build/devel/setup.bash    afterwards, for rosrun / roslaunch / rostest
+#   source devel/setup.bash    afterwards, for rosrun / roslaunch / rostest
 set -euo pipefail
 # Debian's python3 must come first: catkin needs its catkin_pkg.
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
@@ -37,9 +38,13 @@ if ((${#missing[@]})); then
 fi
 
 echo "setup: building in $ROOT/build"
-cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 >"$ROOT/build.log" 2>&1 \
+cmake -S "$ROOT" -B "$ROOT/build" -DCATKIN_DEVEL_PREFIX="$ROOT/devel" -DCMAKE_BUILD_TYPE=Release \
+  -DPYTHON_EXECUTABLE=/usr/bin/python3 >"$ROOT/build.log" 2>&1 \
   || { tail -n 40 "$ROOT/build.log"; exit 1; }
 make -C "$ROOT/build" -j"$(nproc)" all tests >>"$ROOT/build.log" 2>&1 || { grep -E "error|Error" "$ROOT/build.log" | head -n 40; exit 1; }
+# catkin caches the environment of run_tests (PYTHONPATH, LD_LIBRARY_PATH) at configure time, from
+# the devel folders that exist then: configure once more now that the first build made them.
+cmake "$ROOT/build" >>"$ROOT/build.log" 2>&1
 echo "setup: built (log: build.log)"
 
 # The embedded demo bag is built here, not committed.
