@@ -136,15 +136,26 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
     input = gray;
   }
 
+  // Float buffers are reused from call to call on each thread: fresh ones of this size would be
+  // fresh pages from the kernel, whose faults cost more than the arithmetic.
+  thread_local struct { cv::Mat input_f, f, e, f_rounded, gamma_f; } scratch;
+  cv::Mat& input_f = scratch.input_f;
+  cv::Mat& f = scratch.f;
+  cv::Mat& e = scratch.e;
+
   // Eqs 8-9: f = I * h, kept in floating point.
-  cv::Mat input_f, f;
   input.convertTo(input_f, CV_32F);
   cv::GaussianBlur(input_f, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
                    cv::BORDER_REFLECT_101);
 
-  GammaLut lut{};
-  cv::Mat f_rounded;
+  // Eqs 17-20: G_mask = I - f (eq 18), T_mask = LUT(round f) - f (eq 17) and
+  // E = I + sharpening G_mask + beta T_mask (eqs 19-20; T_mask only for poor images), computed as
+  // (1 + sharpening) I - (sharpening + beta) f + beta LUT(round f) in vectorised passes.
+  const double s = params.sharpening;
+  const double b = result.poor_quality ? params.beta : 0.0;
+  cv::addWeighted(input_f, 1.0 + s, f, -(s + b), 0.0, e);
   if (result.poor_quality) {
+    cv::Mat& f_rounded = scratch.f_rounded;
     f.convertTo(f_rounded, CV_8U);  // round(f), the index into the gamma table
     Histogram histogram{};
     for (int y = 0; y < f_rounded.rows; ++y) {
@@ -153,31 +164,13 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
         ++histogram[row[x]];
       }
     }
-    lut = truncatedGammaLut(histogram, params.alpha, params.tau);
+    GammaLut lut = truncatedGammaLut(histogram, params.alpha, params.tau);
+    cv::Mat& gamma_f = scratch.gamma_f;
+    cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), gamma_f);
+    cv::scaleAdd(gamma_f, b, e, e);
   }
-
-  // Eqs 17-20 in one pass: G_mask = I - f (eq 18), T_mask = LUT(round f) - f (eq 17),
-  // E = I + sharpening G_mask + beta T_mask (eqs 19-20; T_mask only for poor images).
-  const float s = static_cast<float>(params.sharpening);
-  const float b = result.poor_quality ? static_cast<float>(params.beta) : 0.0f;
   result.image = output;
-  result.image.create(gray.size(), CV_8UC1);  // keeps `output`'s buffer when it fits
-  for (int y = 0; y < gray.rows; ++y) {
-    const std::uint8_t* in = input.ptr<std::uint8_t>(y);
-    const float* fr = f.ptr<float>(y);
-    std::uint8_t* out = result.image.ptr<std::uint8_t>(y);
-    if (result.poor_quality) {
-      const std::uint8_t* idx = f_rounded.ptr<std::uint8_t>(y);
-      for (int x = 0; x < gray.cols; ++x) {
-        const float t_mask = lut[idx[x]] - fr[x];
-        out[x] = cv::saturate_cast<std::uint8_t>(in[x] + s * (in[x] - fr[x]) + b * t_mask);
-      }
-    } else {
-      for (int x = 0; x < gray.cols; ++x) {
-        out[x] = cv::saturate_cast<std::uint8_t>(in[x] + s * (in[x] - fr[x]));
-      }
-    }
-  }
+  e.convertTo(result.image, CV_8U);  // round and saturate; keeps `output`'s buffer when it fits
   if (result.inverted) {
     cv::bitwise_not(result.image, result.image);
   }

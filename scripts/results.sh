@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) from the shared EuRoC frames:
+# the evaluation (Tables 2-4, Figures 6-7), the benchmarks and the nodelet chain's figures.
+#
+#   bash scripts/results.sh [EUROC_ASL_DIR]     default ../shared/data/euroc/V1_01_easy_micro
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+EUROC=$(realpath "${1:-$ROOT/../shared/data/euroc/V1_01_easy_micro}")
+OUT="$ROOT/docs/results"
+bash "$ROOT/scripts/setup.sh"
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+set +u
+# shellcheck disable=SC1091
+source "$ROOT/devel/setup.bash"
+set -u
+mkdir -p "$OUT"
+start=$(date +%s)
+
+echo "results: evaluation on $EUROC"
+"$ROOT/devel/lib/enhanced_orb/enhanced_orb_evaluate" --euroc "$EUROC" --output "$OUT" --every 19
+
+echo "results: benchmarks"
+"$ROOT/devel/lib/enhanced_orb/benchmark_extraction" --frames "$EUROC/mav0/cam0/data" --benchmark_min_time=0.5 \
+  --benchmark_out="$OUT/benchmark.json" --benchmark_out_format=json >/dev/null
+
+echo "results: the nodelet chain"
+BAG=$(mktemp -d)/euroc.bag
+"$ROOT/devel/lib/enhanced_orb/euroc_to_bag" "$EUROC" "$BAG" >/dev/null
+export ROS_HOME=$(mktemp -d)
+roslaunch enhanced_orb pipeline.launch >"$ROS_HOME/pipeline.log" 2>&1 &
+LAUNCH=$!
+trap 'kill -INT $LAUNCH 2>/dev/null || true; wait $LAUNCH 2>/dev/null || true; rm -rf "$(dirname "$BAG")"' EXIT
+python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv"
+
+python3 "$ROOT/scripts/results.py" "$OUT"
+echo "results: done in $(( $(date +%s) - start )) s"

@@ -1,0 +1,171 @@
+#include "evaluation.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+
+namespace enhanced_orb {
+namespace evaluation {
+
+GroundTruth identity(double tolerance) {
+  return [tolerance](const cv::Point2f& p1, const cv::Point2f& p2) { return cv::norm(p1 - p2) <= tolerance; };
+}
+
+MatchCounts matchAndCount(const std::vector<cv::KeyPoint>& kp1, const cv::Mat& d1, const std::vector<cv::KeyPoint>& kp2,
+                          const cv::Mat& d2, const GroundTruth& truth) {
+  MatchCounts counts;
+  if (d1.empty() || d2.empty()) {
+    return counts;
+  }
+  std::vector<cv::DMatch> matches;
+  cv::BFMatcher(cv::NORM_HAMMING, true).match(d1, d2, matches);
+  counts.matches = static_cast<int>(matches.size());
+  for (const cv::DMatch& m : matches) {
+    counts.correct += truth(kp1[m.queryIdx].pt, kp2[m.trainIdx].pt);
+  }
+  return counts;
+}
+
+double repeatability(const std::vector<cv::KeyPoint>& kp_a, const std::vector<cv::KeyPoint>& kp_b, double tolerance) {
+  if (kp_a.empty() || kp_b.empty()) {
+    return 0.0;
+  }
+  // Count from the smaller set, so that the share cannot exceed 1 where keypoints cluster.
+  const bool a_smaller = kp_a.size() <= kp_b.size();
+  const std::vector<cv::KeyPoint>& kp1 = a_smaller ? kp_a : kp_b;
+  const std::vector<cv::KeyPoint>& kp2 = a_smaller ? kp_b : kp_a;
+  // Buckets of `tolerance` pixels: a neighbour within tolerance lies in the 3 x 3 buckets around.
+  auto key = [tolerance](float x, float y) {
+    return (static_cast<std::int64_t>(std::floor(x / tolerance)) << 32) ^
+           static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(y / tolerance)));
+  };
+  std::unordered_map<std::int64_t, std::vector<cv::Point2f>> buckets;
+  for (const cv::KeyPoint& kp : kp2) {
+    buckets[key(kp.pt.x, kp.pt.y)].push_back(kp.pt);
+  }
+  int repeated = 0;
+  for (const cv::KeyPoint& kp : kp1) {
+    bool found = false;
+    for (int dy = -1; dy <= 1 && !found; ++dy) {
+      for (int dx = -1; dx <= 1 && !found; ++dx) {
+        auto it = buckets.find(
+            key(kp.pt.x + dx * static_cast<float>(tolerance), kp.pt.y + dy * static_cast<float>(tolerance)));
+        if (it == buckets.end()) {
+          continue;
+        }
+        for (const cv::Point2f& p : it->second) {
+          if (cv::norm(p - kp.pt) <= tolerance) {
+            found = true;
+            break;
+          }
+        }
+      }
+    }
+    repeated += found;
+  }
+  return static_cast<double>(repeated) / static_cast<double>(kp1.size());
+}
+
+std::optional<Camera> readCamera(const std::string& mav0, const std::string& camera) {
+  try {
+    cv::FileStorage fs(mav0 + "/" + camera + "/sensor.yaml", cv::FileStorage::READ);
+    if (!fs.isOpened()) {
+      return std::nullopt;
+    }
+    std::vector<double> intrinsics, distortion, t_bs;
+    fs["intrinsics"] >> intrinsics;
+    fs["distortion_coefficients"] >> distortion;
+    fs["T_BS"]["data"] >> t_bs;
+    if (intrinsics.size() != 4 || distortion.size() != 4 || t_bs.size() != 16) {
+      return std::nullopt;
+    }
+    Camera cam;
+    cam.K = cv::Matx33d(intrinsics[0], 0, intrinsics[2], 0, intrinsics[1], intrinsics[3], 0, 0, 1);
+    cam.distortion = distortion;
+    cam.T_BS = cv::Matx44d(t_bs.data());
+    return cam;
+  } catch (const cv::Exception&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<Trajectory> Trajectory::read(const std::string& mav0) {
+  std::ifstream in(mav0 + "/state_groundtruth_estimate0/data.csv");
+  if (!in) {
+    return std::nullopt;
+  }
+  Trajectory t;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') {
+      continue;
+    }
+    std::vector<double> v;
+    std::istringstream fields(line);
+    std::string field;
+    std::int64_t stamp = 0;
+    for (int i = 0; std::getline(fields, field, ','); ++i) {
+      if (i == 0) {
+        stamp = std::stoll(field);
+      } else {
+        v.push_back(std::stod(field));
+      }
+    }
+    if (v.size() < 7) {
+      continue;
+    }
+    // p_RS_R (x, y, z), q_RS (w, x, y, z): the body in the world.
+    const cv::Vec4d q = cv::normalize(cv::Vec4d(v[3], v[4], v[5], v[6]));
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    t.poses_[stamp] = cv::Matx44d(1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w), v[0],
+                                  2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w), v[1],
+                                  2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y), v[2], 0, 0, 0, 1);
+  }
+  if (t.poses_.empty()) {
+    return std::nullopt;
+  }
+  return t;
+}
+
+std::optional<cv::Matx44d> Trajectory::at(std::int64_t stamp, std::int64_t tolerance_ns) const {
+  auto after = poses_.lower_bound(stamp);
+  std::optional<std::pair<std::int64_t, cv::Matx44d>> best;
+  for (auto it : {after, after == poses_.begin() ? poses_.end() : std::prev(after)}) {
+    if (it != poses_.end() && (!best || std::llabs(it->first - stamp) < std::llabs(best->first - stamp))) {
+      best = *it;
+    }
+  }
+  if (!best || std::llabs(best->first - stamp) > tolerance_ns) {
+    return std::nullopt;
+  }
+  return best->second;
+}
+
+GroundTruth epipolar(const Camera& camera, const cv::Matx44d& T_WB1, const cv::Matx44d& T_WB2, double tolerance) {
+  // Camera 1 in camera 2: T_C2C1 = (T_WB2 T_BS)^-1 T_WB1 T_BS; E = [t]x R maps normalised x1 to a line of x2.
+  const cv::Matx44d T_21 = (T_WB2 * camera.T_BS).inv() * (T_WB1 * camera.T_BS);
+  const cv::Matx33d R = T_21.get_minor<3, 3>(0, 0);
+  const cv::Vec3d t(T_21(0, 3), T_21(1, 3), T_21(2, 3));
+  const cv::Matx33d tx(0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0);
+  const cv::Matx33d E = tx * R;
+  const double focal = 0.5 * (camera.K(0, 0) + camera.K(1, 1));
+  const cv::Matx33d K = camera.K;
+  const std::vector<double> distortion = camera.distortion;
+  return [E, focal, K, distortion, tolerance](const cv::Point2f& p1, const cv::Point2f& p2) {
+    std::vector<cv::Point2f> in{p1, p2}, out;
+    cv::undistortPoints(in, out, K, distortion);
+    const cv::Vec3d x1(out[0].x, out[0].y, 1.0), x2(out[1].x, out[1].y, 1.0);
+    const cv::Vec3d l2 = E * x1;      // line of x2 in image 2
+    const cv::Vec3d l1 = E.t() * x2;  // line of x1 in image 1
+    const double d2 = std::abs(l2.dot(x2)) / std::hypot(l2[0], l2[1]);
+    const double d1 = std::abs(l1.dot(x1)) / std::hypot(l1[0], l1[1]);
+    return std::max(d1, d2) * focal <= tolerance;
+  };
+}
+
+}  // namespace evaluation
+}  // namespace enhanced_orb
