@@ -88,6 +88,22 @@ protected:
 TEST_F(ZeroCopy, ExtractorReceivesTheEnhancersMessageItself) {
   // The subscription on keypoints makes the chain subscribe its inputs (lazily).
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 20.0)) << "enhancer never subscribed";
+  // The enhancer may subscribe (for this test's probe) before the extractor does: warm the chain up
+  // until a frame comes through, then start counting afresh.
+  bool warm = false;
+  for (int i = 0; i < 20 && !warm; ++i) {
+    const int before = keypoints_;
+    image_pub_.publish(frame(100 + i));
+    warm = waitFor([&] { return keypoints_ > before; }, 1.0);
+  }
+  ASSERT_TRUE(warm) << "no keypoints came through the chain";
+  ros::WallDuration(0.5).sleep();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    published_.clear();
+    received_.clear();
+    probed_.clear();
+  }
   const int frames = 10;
   for (int i = 0; i < frames; ++i) {
     const int before = keypoints_;
