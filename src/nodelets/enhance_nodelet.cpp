@@ -16,7 +16,7 @@ namespace enhanced_orb {
 class EnhanceNodelet : public ImageNodelet {
 private:
   void advertiseOutputs() override {
-    pub_ = transport().advertise("image_enhanced", 1, connectCallback(), connectCallback());
+    pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("output_address");
     server_ = std::make_unique<dynamic_reconfigure::Server<EnhanceConfig>>(config_mutex_, getPrivateNodeHandle());
     server_->setCallback([this](EnhanceConfig& config, uint32_t) { reconfigure(config); });

@@ -22,8 +22,8 @@ class ExtractNodelet : public ImageNodelet {
 private:
   void advertiseOutputs() override {
     ros::NodeHandle& nh = getNodeHandle();
-    keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", 1, connectCallbackRos(), connectCallbackRos());
-    annotated_pub_ = transport().advertise("image_annotated", 1, connectCallback(), connectCallback());
+    keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
+    annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("input_address");
     server_ = std::make_unique<dynamic_reconfigure::Server<ExtractConfig>>(config_mutex_, getPrivateNodeHandle());
     server_->setCallback([this](ExtractConfig& config, uint32_t) { reconfigure(config); });

@@ -42,7 +42,7 @@ void ImageNodelet::connect() {
   const bool wanted = outputsHaveSubscribers();
   if (wanted && !sub_) {
     const image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
-    sub_ = it_->subscribe("image", static_cast<uint32_t>(queue_size_), &ImageNodelet::imageCallback, this, hints);
+    sub_ = it_->subscribe("image", queueSize(), &ImageNodelet::imageCallback, this, hints);
     NODELET_DEBUG("subscribed to %s", sub_.getTopic().c_str());
   } else if (!wanted && sub_) {
     NODELET_DEBUG("no subscriber left: unsubscribing %s", sub_.getTopic().c_str());

@@ -42,6 +42,9 @@ protected:
   ros::Publisher advertiseAddress(const std::string& topic);
 
   image_transport::ImageTransport& transport() { return *it_; }
+  // ~queue_size: of the input subscription and of every output, so that a subscriber in another
+  // process that reads in bursts loses nothing the nodelet could keep.
+  uint32_t queueSize() const { return static_cast<uint32_t>(queue_size_); }
 
 private:
   void onInit() final;
