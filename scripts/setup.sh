@@ -23,6 +23,8 @@ PACKAGES=(
   python3-numpy python3-opencv python3-cv-bridge python3-matplotlib python3-diagnostic-msgs
   # demo data, viewer, checks
   visp-images-data rviz xvfb xauth clang-format catkin-lint
+  # fuzzing and sanitizers
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -122,6 +122,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   }
   EnhanceResult result;
   if (gray.empty()) {
+    result.image.create(gray.size(), CV_8UC1);  // as empty as the input (0 x n or n x 0)
     return result;
   }
   result.lambda = imageLambda(gray);
