@@ -62,7 +62,7 @@ private:
     }
     if (!enabled && msg->encoding == sensor_msgs::image_encodings::MONO8) {
       pub_.publish(msg);  // nothing to do: hand on the very same message
-      publishAddress(address_pub_, msg.get());
+      publishAddress(address_pub_, *msg);
       return;
     }
     // Build the output in its message, so that it is published without a copy.
@@ -80,7 +80,7 @@ private:
       gray.copyTo(view);
     }
     pub_.publish(out);
-    publishAddress(address_pub_, out.get());
+    publishAddress(address_pub_, *out);
   }
 
   image_transport::Publisher pub_;

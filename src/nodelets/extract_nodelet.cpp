@@ -62,7 +62,7 @@ private:
   }
 
   void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
-    publishAddress(address_pub_, msg.get());
+    publishAddress(address_pub_, *msg);
     std::shared_ptr<const OrbExtractor> extractor;
     DrawOptions draw;
     {

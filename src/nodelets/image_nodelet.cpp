@@ -1,7 +1,10 @@
 #include "image_nodelet.h"
 
 #include <chrono>
+#include <cstdint>
 #include <exception>
+
+#include <diagnostic_msgs/KeyValue.h>
 
 #include "enhanced_orb/ros/conversions.h"
 
@@ -93,14 +96,15 @@ void ImageNodelet::warnThrottled(const std::string& reason, const std::string& m
 }
 
 ros::Publisher ImageNodelet::advertiseAddress(const std::string& topic) {
-  return debug_addresses_ ? getPrivateNodeHandle().advertise<std_msgs::UInt64>("debug/" + topic, 100)
+  return debug_addresses_ ? getPrivateNodeHandle().advertise<diagnostic_msgs::KeyValue>("debug/" + topic, 100)
                           : ros::Publisher();
 }
 
-void ImageNodelet::publishAddress(ros::Publisher& pub, const void* address) {
+void ImageNodelet::publishAddress(ros::Publisher& pub, const sensor_msgs::Image& image) {
   if (pub) {
-    std_msgs::UInt64 msg;
-    msg.data = reinterpret_cast<std::uint64_t>(address);
+    diagnostic_msgs::KeyValue msg;
+    msg.key = std::to_string(image.header.stamp.toNSec());
+    msg.value = std::to_string(reinterpret_cast<std::uintptr_t>(&image));
     pub.publish(msg);
   }
 }

@@ -13,7 +13,6 @@
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
-#include <std_msgs/UInt64.h>
 #include <opencv2/core.hpp>
 
 namespace enhanced_orb {
@@ -36,9 +35,10 @@ protected:
   // Logs `message` as a warning at most every 5 s for each `reason`; a new reason logs at once.
   void warnThrottled(const std::string& reason, const std::string& message);
 
-  // With ~debug_addresses, publishes the address of a message on ~debug/<topic> (UInt64), so that
-  // a test in the same process can prove that messages pass between nodelets without a copy.
-  void publishAddress(ros::Publisher& pub, const void* address);
+  // With ~debug_addresses, publishes where an image message lives on ~debug/<topic>
+  // (diagnostic_msgs/KeyValue: key = its stamp in ns, value = its address), so that a test in the
+  // same process can prove that images pass between nodelets without a copy.
+  void publishAddress(ros::Publisher& pub, const sensor_msgs::Image& image);
   ros::Publisher advertiseAddress(const std::string& topic);
 
   image_transport::ImageTransport& transport() { return *it_; }

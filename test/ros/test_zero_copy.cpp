@@ -1,14 +1,14 @@
 // Loads EnhanceNodelet and ExtractNodelet into this process with nodelet::Loader, feeds frames and
 // checks that the image the extractor receives is the very object the enhancer published.
 #include <atomic>
-#include <deque>
+#include <map>
 #include <mutex>
 
+#include <diagnostic_msgs/KeyValue.h>
 #include <gtest/gtest.h>
 #include <nodelet/loader.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
-#include <std_msgs/UInt64.h>
 #include <boost/make_shared.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -36,14 +36,20 @@ protected:
     spinner_.start();
   }
 
-  void onPublished(const std_msgs::UInt64ConstPtr& m) { push(published_, m->data); }
-  void onReceived(const std_msgs::UInt64ConstPtr& m) { push(received_, m->data); }
-  void onProbe(const sensor_msgs::ImageConstPtr& m) { push(probed_, reinterpret_cast<std::uint64_t>(m.get())); }
+  // Addresses by image stamp [ns]: as the enhancer published, as the extractor received, and as
+  // this process's own subscriber received.
+  using Addresses = std::map<std::uint64_t, std::uint64_t>;
+  void onPublished(const diagnostic_msgs::KeyValueConstPtr& m) { record(published_, m->key, m->value); }
+  void onReceived(const diagnostic_msgs::KeyValueConstPtr& m) { record(received_, m->key, m->value); }
+  void onProbe(const sensor_msgs::ImageConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    probed_[m->header.stamp.toNSec()] = reinterpret_cast<std::uint64_t>(m.get());
+  }
   void onKeypoints(const enhanced_orb::KeypointArrayConstPtr&) { ++keypoints_; }
 
-  void push(std::deque<std::uint64_t>& q, std::uint64_t v) {
+  void record(Addresses& addresses, const std::string& stamp, const std::string& address) {
     std::lock_guard<std::mutex> lock(mutex_);
-    q.push_back(v);
+    addresses[std::stoull(stamp)] = std::stoull(address);
   }
 
   // Waits until `condition` holds, up to `seconds`.
@@ -81,7 +87,7 @@ protected:
   ros::Subscriber published_sub_, received_sub_, probe_sub_, keypoints_sub_;
   ros::Publisher image_pub_;
   std::mutex mutex_;
-  std::deque<std::uint64_t> published_, received_, probed_;
+  Addresses published_, received_, probed_;
   std::atomic<int> keypoints_{0};
 };
 
@@ -89,7 +95,7 @@ TEST_F(ZeroCopy, ExtractorReceivesTheEnhancersMessageItself) {
   // The subscription on keypoints makes the chain subscribe its inputs (lazily).
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 20.0)) << "enhancer never subscribed";
   // The enhancer may subscribe (for this test's probe) before the extractor does: warm the chain up
-  // until a frame comes through, then start counting afresh.
+  // until a frame comes through.
   bool warm = false;
   for (int i = 0; i < 20 && !warm; ++i) {
     const int before = keypoints_;
@@ -97,30 +103,31 @@ TEST_F(ZeroCopy, ExtractorReceivesTheEnhancersMessageItself) {
     warm = waitFor([&] { return keypoints_ > before; }, 1.0);
   }
   ASSERT_TRUE(warm) << "no keypoints came through the chain";
-  ros::WallDuration(0.5).sleep();
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    published_.clear();
-    received_.clear();
-    probed_.clear();
-  }
   const int frames = 10;
   for (int i = 0; i < frames; ++i) {
     const int before = keypoints_;
     image_pub_.publish(frame(i));
     ASSERT_TRUE(waitFor([&] { return keypoints_ > before; }, 10.0)) << "no keypoints for frame " << i;
   }
+  auto stamp = [](int i) { return ros::Time(1000 + i).toNSec(); };
   ASSERT_TRUE(waitFor(
       [&] {
         std::lock_guard<std::mutex> lock(mutex_);
-        return received_.size() >= frames && published_.size() >= frames && probed_.size() >= frames;
+        for (int i = 0; i < frames; ++i) {
+          if (!received_.count(stamp(i)) || !published_.count(stamp(i)) || !probed_.count(stamp(i))) {
+            return false;
+          }
+        }
+        return true;
       },
-      5.0));
+      5.0))
+      << "some frame's addresses never arrived";
   std::lock_guard<std::mutex> lock(mutex_);
   for (int i = 0; i < frames; ++i) {
-    EXPECT_NE(published_[i], 0u);
-    EXPECT_EQ(received_[i], published_[i]) << "frame " << i << ": the extractor got a copy";
-    EXPECT_EQ(probed_[i], published_[i]) << "frame " << i << ": an in-process subscriber got a copy";
+    const std::uint64_t published = published_[stamp(i)];
+    EXPECT_NE(published, 0u);
+    EXPECT_EQ(received_[stamp(i)], published) << "frame " << i << ": the extractor got a copy";
+    EXPECT_EQ(probed_[stamp(i)], published) << "frame " << i << ": an in-process subscriber got a copy";
   }
 }
 
