@@ -23,6 +23,18 @@ echo "results: benchmarks"
 "$ROOT/devel/lib/enhanced_orb/benchmark_extraction" --frames "$EUROC/mav0/cam0/data" --benchmark_min_time=0.5 \
   --benchmark_out="$OUT/benchmark.json" --benchmark_out_format=json >/dev/null
 
+echo "results: callgrind profile of the enhanced ORB at 1000 features (5 frames)"
+PROFILE=$(mktemp -d)
+mapfile -t SOME < <(ls "$EUROC"/mav0/cam0/data/*.png | head -n 5)
+valgrind --tool=callgrind --toggle-collect='enhanced_orb::OrbExtractor::extract*' \
+  --callgrind-out-file="$PROFILE/callgrind.out" "$ROOT/devel/lib/enhanced_orb/enhanced_orb_extract" \
+  --max-features 1000 "${SOME[@]}" --output "$PROFILE" >/dev/null 2>&1
+# Inclusive instruction counts of the stages: what each costs with everything it calls.
+callgrind_annotate --inclusive=yes "$PROFILE/callgrind.out" 2>/dev/null \
+  | grep -E "PROGRAM TOTALS|enhanced_orb::[a-zA-Z]+\(|cv::Feature2D::compute|cv::FAST\(|cv::resize|cv::threshold\(" \
+  | sed -E 's/\?\?\?://; s/ \[[^]]*\]$//; s/\(cv::[^)]*\)|\(std::[^)]*\)|\([^()%]*\)//g; s/ const$//' >"$OUT/callgrind.txt"
+rm -rf "$PROFILE"
+
 echo "results: the nodelet chain"
 BAG=$(mktemp -d)/euroc.bag
 "$ROOT/devel/lib/enhanced_orb/euroc_to_bag" "$EUROC" "$BAG" >/dev/null

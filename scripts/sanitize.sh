@@ -35,7 +35,7 @@ if [ "$MODE" = address ]; then
     ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
     make -C "$B" run_tests_enhanced_orb_rostest run_tests_enhanced_orb_roslaunch-check -j1 >>"$B/run_tests.log" 2>&1
 else
-  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 make -C "$B" run_tests_enhanced_orb_gtest -j1 \
+  TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$ROOT/scripts/tsan.supp" make -C "$B" run_tests_enhanced_orb_gtest -j1 \
     >"$B/run_tests.log" 2>&1
 fi
 grep -E "ERROR: (Address|Thread|Leak)Sanitizer|runtime error|WARNING: ThreadSanitizer" "$B/run_tests.log" | head -n 20

@@ -24,7 +24,7 @@ PACKAGES=(
   # demo data, viewer, checks
   visp-images-data rviz xvfb xauth clang-format catkin-lint
   # fuzzing and sanitizers
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev valgrind
 )
 
 missing=()
