@@ -2,7 +2,6 @@
 """Sends the running pipeline every sensor_msgs encoding, degenerate and malformed images, and
 extreme parameters. Each bad input has a defined outcome (output, or a warning and none); after
 each, a good frame is processed and the nodelet manager is alive."""
-import threading
 import unittest
 
 import dynamic_reconfigure.client
@@ -10,34 +9,11 @@ import numpy as np
 import rosnode
 import rospy
 import rostest
-from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image
 
-from enhanced_orb.msg import KeypointArray
+from pipeline_client import H, W, PipelineClient, image, scene
 
 MANAGER = "/cam0/enhanced_orb_manager"
-W, H = 160, 120
-
-
-def scene(w=W, h=H, seed=3):
-    rng = np.random.RandomState(seed)
-    gray = np.full((h, w), 100, np.uint8)
-    for _ in range(40):
-        x, y = rng.randint(0, max(w - 10, 1)), rng.randint(0, max(h - 10, 1))
-        gray[y:y + rng.randint(5, 30), x:x + rng.randint(5, 30)] = rng.randint(0, 256)
-    return gray
-
-
-def image(encoding, pixels, width=None, height=None, step=None, data=None):
-    pixels = np.ascontiguousarray(pixels)
-    msg = Image()
-    msg.encoding = encoding
-    msg.height = pixels.shape[0] if height is None else height
-    msg.width = (pixels.shape[1] if pixels.ndim > 1 else 0) if width is None else width
-    raw = pixels.tobytes()
-    msg.step = (len(raw) // msg.height if msg.height else 0) if step is None else step
-    msg.data = raw if data is None else data
-    return msg
 
 
 G = scene()
@@ -106,46 +82,19 @@ EXTREMES = [  # (node, values)
 
 class BadInput(unittest.TestCase):
     def setUp(self):
-        self.lock = threading.Lock()
-        self.stamps = set()
-        self.next_stamp = 1
-        rospy.Subscriber("/cam0/keypoints", KeypointArray, self.on_keypoints, queue_size=50)
+        self.client = PipelineClient()
         rospy.Subscriber("/cam0/image_annotated", Image, lambda m: None, queue_size=2)
-        self.pub = rospy.Publisher("/cam0/image_raw", Image, queue_size=10)
-        deadline = rospy.Time.now() + rospy.Duration(30)
-        while self.pub.get_num_connections() == 0 and rospy.Time.now() < deadline:
-            rospy.sleep(0.1)
-        self.assertGreater(self.pub.get_num_connections(), 0, "the pipeline never subscribed its input")
-
-    def on_keypoints(self, msg):
-        with self.lock:
-            self.stamps.add(msg.header.stamp)
-
-    def send(self, msg):
-        msg.header.stamp = rospy.Time(self.next_stamp)
-        msg.header.frame_id = "cam0"
-        self.next_stamp += 1
-        self.pub.publish(msg)
-        return msg.header.stamp
-
-    def processed(self, stamp, seconds):
-        deadline = rospy.Time.now() + rospy.Duration(seconds)
-        while rospy.Time.now() < deadline:
-            with self.lock:
-                if stamp in self.stamps:
-                    return True
-            rospy.sleep(0.05)
-        return False
+        self.assertTrue(self.client.connected(), "the pipeline never subscribed its input")
 
     def expect_alive_and_working(self, after):
         self.assertTrue(rosnode.rosnode_ping(MANAGER, max_count=1), "the manager died after " + after)
-        stamp = self.send(image("mono8", G))
-        self.assertTrue(self.processed(stamp, 15.0), "the good frame after %s was not processed" % after)
+        stamp = self.client.send(image("mono8", G))
+        self.assertTrue(self.client.processed(stamp, 15.0), "the good frame after %s was not processed" % after)
 
     def test_battery_of_messages(self):
         for name, msg, processed in BATTERY:
-            stamp = self.send(msg)
-            got = self.processed(stamp, 15.0 if processed else 1.0)
+            stamp = self.client.send(msg)
+            got = self.client.processed(stamp, 15.0 if processed else 1.0)
             self.assertEqual(got, processed, "%s: %s" % (name, "no output" if processed else "output for a bad frame"))
             self.expect_alive_and_working(name)
 
@@ -156,8 +105,8 @@ class BadInput(unittest.TestCase):
         for node, values in EXTREMES:
             clients[node].update_configuration(values)
             for msg in (image("mono8", G), image("mono8", scene(752, 480, seed=5))):
-                stamp = self.send(msg)
-                self.assertTrue(self.processed(stamp, 30.0), "no output with %s %s" % (node, values))
+                stamp = self.client.send(msg)
+                self.assertTrue(self.client.processed(stamp, 30.0), "no output with %s %s" % (node, values))
             self.expect_alive_and_working("%s %s" % (node, values))
             restore = {k: v for k, v in defaults[node].items() if k in values}
             clients[node].update_configuration(restore)
