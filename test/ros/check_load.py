@@ -8,7 +8,6 @@ import ast
 import random
 import signal
 import subprocess
-import sys
 import threading
 import time
 import unittest
