@@ -1,10 +1,11 @@
-// Section III-A of the paper: gray conversion and image enhancement (Gaussian filter, truncated
-// adaptive gamma, unsharp masking).
+// Section III-A of the paper: gray conversion and image enhancement (Gaussian filter, a
+// histogram-driven tone curve, unsharp masking).
 #ifndef ENHANCED_ORB_ENHANCE_H
 #define ENHANCED_ORB_ENHANCE_H
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -27,16 +28,35 @@ double imageLambda(const cv::Mat& gray);
 bool isPoorQuality(double lambda, const EnhanceParams& params);
 
 using Histogram = std::array<std::uint32_t, 256>;
+using WeightedHistogram = std::array<double, 256>;
 using GammaLut = std::array<float, 256>;
+
+// Eqs 10-13: the cumulative weighted distribution C_w of a histogram (counts or weights), with
+// the smoothness exponent alpha. All zero for an empty histogram.
+std::array<double, 256> weightedCdf(const WeightedHistogram& histogram, double alpha);
 
 // Eqs 10-16: the truncated adaptive gamma table LUT(i) = 255 (i/255)^gamma_i of a histogram.
 GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau);
 
+// The default mode's tone curve: LUT(i) = 255 (tau i/255 + (1 - tau) C_w(i)), an equalisation by
+// the weighted CDF whose slope never falls below tau. The identity for an empty histogram.
+GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau);
+
+// The default mode's histograms: one per tile of a tiles x tiles grid over `f` (the filtered
+// image, CV_32F), each pixel adding sqrt(|grad f|) (3x3 Sobel) to the bin of round(f), so that
+// flat regions (sky, walls, saturated areas) stop driving the curve. Row-major, row = tile y.
+std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tiles);
+
+// Applies per-tile tone curves to `f` (CV_32F): each curve is read with linear interpolation in
+// f, and the curves of the four nearest tile centres are blended bilinearly (as CLAHE does). One
+// LUT gives a global curve. Returns CV_32F.
+cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles);
+
 struct EnhanceResult {
   cv::Mat image;              // enhanced 8-bit gray image, same size as the input
   double lambda = 0.0;        // eq 7, of the input
-  bool poor_quality = false;  // step 3
-  bool inverted = false;      // step 4: worked on the negative of a bright poor image
+  bool poor_quality = false;  // step 3: the tone curve was applied
+  bool inverted = false;      // step 4 (gamma curve only): worked on the negative of a bright poor image
 };
 
 // The whole enhancement of an 8-bit gray image (ALGORITHM.md section 1). An empty input gives an

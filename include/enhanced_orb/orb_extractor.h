@@ -60,6 +60,9 @@ std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thr
 // (as ORB-SLAM); the last level takes the rounding remainder.
 std::vector<int> levelBudgets(int total, int n_levels, double scale_factor);
 
+// Keeps the `n` strongest keypoints (by response; ties by position), in no particular order.
+void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n);
+
 // Keeps at most `n` keypoints, spread over the image: keypoints are bucketed in square cells of
 // about sqrt(area / n) pixels, and taken best response first from every cell in turn.
 std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size);

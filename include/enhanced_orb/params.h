@@ -1,7 +1,12 @@
-// Parameters of the method, with the paper's defaults and range checks.
+// Parameters of the method: the default mode's values, the `paper` preset, range checks.
 //
 // Dai & Wu, "An Improved ORB Feature Extraction Algorithm Based on Enhanced Image and Truncated
 // Adaptive Threshold", IEEE Access 11 (2023). Names follow the ROS parameter names.
+//
+// The member initialisers below are the default mode: the paper's parts (histogram-driven tone
+// curve, Gaussian filter, truncated adaptive threshold, ORB), set for a fixed feature budget under
+// real lighting change (docs/RESULTS.md has the measurements behind each choice). Params::paper()
+// is the method exactly as published; Params::baseline() the original ORB it is compared with.
 #ifndef ENHANCED_ORB_PARAMS_H
 #define ENHANCED_ORB_PARAMS_H
 
@@ -17,6 +22,18 @@ enum class GammaMode {
   kNever,   // never apply the gamma correction (filter and unsharp mask only)
 };
 
+// The histogram-driven tone curve LUT of eqs 10-17.
+enum class ToneCurve {
+  kGamma,     // the paper's truncated adaptive gamma, eqs 14-16 (on the plain histogram)
+  kEqualize,  // edge-weighted equalisation: each pixel counts by sqrt(|gradient|), per tile
+};
+
+// Named parameter sets.
+enum class Preset {
+  kDefault,  // the default mode (the member initialisers)
+  kPaper,    // Dai & Wu's method as published (ALGORITHM.md)
+};
+
 // How the FAST threshold of each grid cell is chosen.
 enum class ThresholdMode {
   kAdaptive,  // truncated adaptive threshold, eqs 33-34
@@ -25,14 +42,16 @@ enum class ThresholdMode {
 
 // Section III-A: image enhancement.
 struct EnhanceParams {
-  double alpha = 0.2;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
-  double tau = 0.3;             // eq 15: lower truncation of the per-level gamma, [0, 1]
-  double beta = 0.3;            // eq 20: weight of the brightness mask T_mask, [0, 2]
-  double sharpening = 1.0;      // eq 19: unsharp-mask degree, [0, 5]
+  ToneCurve tone_curve = ToneCurve::kEqualize;
+  double alpha = 0.5;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
+  double tau = 0.3;             // eq 15 (gamma: lower truncation of gamma_i; equalize: least slope), [0, 1]
+  double beta = 1.0;            // eq 20: weight of the brightness mask T_mask, [0, 2]
+  double sharpening = -1.0;     // eq 19: unsharp-mask degree, [-1, 5]; -1 leaves the filtered image f
   int blur_ksize = 5;           // eq 8: Gaussian kernel size, odd, [1, 31]
   double blur_sigma = 1.0;      // eq 8: Gaussian sigma, [0.1, 10]
-  double std_threshold = 0.25;  // step 3: quality test on lambda, [0, 1]
-  GammaMode gamma_mode = GammaMode::kAuto;
+  double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode auto), [0, 1]
+  GammaMode gamma_mode = GammaMode::kAlways;
+  int tone_tiles = 4;           // equalize: tiles per side, one curve each, interpolated, [1, 16]
 };
 
 // Section III-B: truncated adaptive threshold.
@@ -46,7 +65,10 @@ struct ThresholdParams {
 struct OrbParams {
   ThresholdMode threshold_mode = ThresholdMode::kAdaptive;
   int fast_threshold = 20;    // the original ORB's fixed threshold (kFixed), [1, 200]
-  int max_features = 0;       // 0: every corner; > 0: budget over all levels, [0, 100000]
+  int max_features = 1000;    // 0: every corner; > 0: budget over all levels, [0, 100000]
+  // > 0: a level's spread selection draws from its candidate_ratio x budget strongest corners only;
+  // 0: from every corner (the paper). [0, 100]
+  double candidate_ratio = 1.5;
   int n_levels = 8;           // pyramid levels, [1, 16]
   double scale_factor = 1.2;  // pyramid scale between levels, [1.01, 2]
 };
@@ -58,8 +80,11 @@ struct Params {
   ThresholdParams threshold;
   OrbParams orb;
 
-  // The paper's "original ORB": no enhancement, one fixed threshold, everything else identical.
+  // Dai & Wu's method as published: ALGORITHM.md, every corner kept.
+  static Params paper();
+  // The paper's "original ORB": the paper preset with no enhancement and one fixed threshold.
   static Params baseline(int fast_threshold = 20);
+  static Params preset(Preset preset);
 };
 
 // Range checks. Each returns one message per offending value, naming the parameter, the value and
@@ -69,6 +94,12 @@ std::vector<std::string> validate(const ThresholdParams& p);
 std::vector<std::string> validate(const OrbParams& p);
 std::vector<std::string> validate(const Params& p);
 
+// Sets one parameter by its ROS name from text, e.g. ("alpha", "0.5"), ("tone_curve", "gamma"),
+// ("enhance", "false"). Returns an error naming the parameter and the value when the name is
+// unknown or the text is not a whole value of the parameter's type; empty on success. Ranges are
+// checked by validate().
+std::string setParam(Params& params, const std::string& name, const std::string& value);
+
 // Joins validation messages into one line, for logs and exceptions.
 std::string joinMessages(const std::vector<std::string>& messages);
 
@@ -76,8 +107,12 @@ std::string joinMessages(const std::vector<std::string>& messages);
 // "adaptive", "fixed"). parse* return false on an unknown name and leave `out` unchanged.
 const char* toString(GammaMode mode);
 const char* toString(ThresholdMode mode);
+const char* toString(ToneCurve curve);
+const char* toString(Preset preset);
 bool parseGammaMode(const std::string& name, GammaMode& out);
 bool parseThresholdMode(const std::string& name, ThresholdMode& out);
+bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize"
+bool parsePreset(const std::string& name, Preset& out);        // "default", "paper"
 
 }  // namespace enhanced_orb
 

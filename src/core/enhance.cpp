@@ -1,5 +1,6 @@
 #include "enhanced_orb/enhance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -74,17 +75,14 @@ bool isPoorQuality(double lambda, const EnhanceParams& params) {
   return lambda > params.std_threshold;
 }
 
-GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau) {
+std::array<double, 256> weightedCdf(const WeightedHistogram& histogram, double alpha) {
+  std::array<double, 256> cdf{};
   double n = 0.0;
-  for (std::uint32_t count : histogram) {
+  for (double count : histogram) {
     n += count;
   }
-  GammaLut lut{};
-  if (n == 0.0) {
-    for (int i = 0; i < 256; ++i) {
-      lut[i] = static_cast<float>(i);
-    }
-    return lut;
+  if (n <= 0.0) {
+    return cdf;
   }
   // Eq 10: P_i = n_i / n, with its extremes over all 256 levels.
   std::array<double, 256> p{};
@@ -105,11 +103,100 @@ GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau)
   double cumulative = 0.0;
   for (int i = 0; i < 256; ++i) {
     cumulative += pw[i];
-    const double cw = cumulative / pw_sum;                            // eq 13: C_wi
-    const double gamma = std::max(tau, 1.0 - cw);                     // eqs 14-15: truncated gamma_i
+    cdf[i] = cumulative / pw_sum;  // eq 13: C_wi
+  }
+  return cdf;
+}
+
+GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau) {
+  WeightedHistogram counts{};
+  std::copy(histogram.begin(), histogram.end(), counts.begin());
+  const std::array<double, 256> cw = weightedCdf(counts, alpha);
+  const bool empty = cw[255] == 0.0;
+  GammaLut lut{};
+  for (int i = 0; i < 256; ++i) {
+    const double gamma = empty ? 1.0 : std::max(tau, 1.0 - cw[i]);    // eqs 14-15: truncated gamma_i
     lut[i] = static_cast<float>(255.0 * std::pow(i / 255.0, gamma));  // eq 16
   }
   return lut;
+}
+
+GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau) {
+  const std::array<double, 256> cw = weightedCdf(histogram, alpha);
+  const bool empty = cw[255] == 0.0;
+  GammaLut lut{};
+  for (int i = 0; i < 256; ++i) {
+    lut[i] = static_cast<float>(empty ? i : 255.0 * (tau * i / 255.0 + (1.0 - tau) * cw[i]));
+  }
+  return lut;
+}
+
+std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tiles) {
+  CV_Assert(f.type() == CV_32FC1 && tiles >= 1);
+  thread_local cv::Mat gx, gy, weight;
+  cv::Sobel(f, gx, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
+  cv::Sobel(f, gy, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
+  cv::magnitude(gx, gy, weight);
+  cv::sqrt(weight, weight);
+  std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
+  std::vector<int> tile_of_x(f.cols);
+  for (int x = 0; x < f.cols; ++x) {
+    tile_of_x[x] = std::min(tiles - 1, x * tiles / f.cols);
+  }
+  for (int y = 0; y < f.rows; ++y) {
+    const float* fr = f.ptr<float>(y);
+    const float* wr = weight.ptr<float>(y);
+    WeightedHistogram* row_tiles = &histograms[static_cast<size_t>(std::min(tiles - 1, y * tiles / f.rows)) * tiles];
+    for (int x = 0; x < f.cols; ++x) {
+      const int bin = std::clamp(static_cast<int>(std::lround(fr[x])), 0, 255);
+      row_tiles[tile_of_x[x]][bin] += wr[x];
+    }
+  }
+  return histograms;
+}
+
+cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles) {
+  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && luts.size() == static_cast<size_t>(tiles) * tiles);
+  // Each curve as value and slope per level, read at f by linear interpolation.
+  std::vector<std::array<float, 512>> curves(luts.size());
+  for (size_t t = 0; t < luts.size(); ++t) {
+    for (int i = 0; i < 256; ++i) {
+      curves[t][2 * i] = luts[t][i];
+      curves[t][2 * i + 1] = i < 255 ? luts[t][i + 1] - luts[t][i] : 0.0f;
+    }
+  }
+  auto read = [&curves](size_t t, float v) {
+    const float c = std::clamp(v, 0.0f, 255.0f);
+    const int i = std::min(254, static_cast<int>(c));
+    return curves[t][2 * i] + (c - static_cast<float>(i)) * curves[t][2 * i + 1];
+  };
+  // Tile centres at (k + 1/2) of a tile; pixels beyond the outer centres use the nearest curves.
+  auto neighbours = [tiles](int pos, int length, int& k0, int& k1, float& w1) {
+    const float g = (pos + 0.5f) * tiles / length - 0.5f;
+    k0 = std::clamp(static_cast<int>(std::floor(g)), 0, tiles - 1);
+    k1 = std::min(k0 + 1, tiles - 1);
+    w1 = std::clamp(g - static_cast<float>(k0), 0.0f, 1.0f);
+  };
+  std::vector<int> x0(f.cols), x1(f.cols);
+  std::vector<float> wx(f.cols);
+  for (int x = 0; x < f.cols; ++x) {
+    neighbours(x, f.cols, x0[x], x1[x], wx[x]);
+  }
+  cv::Mat out(f.size(), CV_32F);
+  for (int y = 0; y < f.rows; ++y) {
+    int y0 = 0, y1 = 0;
+    float wy = 0.0f;
+    neighbours(y, f.rows, y0, y1, wy);
+    const float* fr = f.ptr<float>(y);
+    float* o = out.ptr<float>(y);
+    for (int x = 0; x < f.cols; ++x) {
+      const float v = fr[x];
+      const float top = (1.0f - wx[x]) * read(y0 * tiles + x0[x], v) + wx[x] * read(y0 * tiles + x1[x], v);
+      const float bottom = (1.0f - wx[x]) * read(y1 * tiles + x0[x], v) + wx[x] * read(y1 * tiles + x1[x], v);
+      o[x] = (1.0f - wy) * top + wy * bottom;
+    }
+  }
+  return out;
 }
 
 EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output) {
@@ -128,9 +215,11 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   result.lambda = imageLambda(gray);
   result.poor_quality = isPoorQuality(result.lambda, params);
 
-  // Step 4: a bright poor image is enhanced as its negative, and turned back at the end.
+  // Step 4: a bright poor image is enhanced as its negative, and turned back at the end. Only the
+  // gamma brightens one way; the equalisation treats dark and bright alike.
+  const bool gamma_curve = params.tone_curve == ToneCurve::kGamma;
   cv::Mat input;
-  result.inverted = result.poor_quality && cv::mean(gray)[0] > 128.0;
+  result.inverted = gamma_curve && result.poor_quality && cv::mean(gray)[0] > 128.0;
   if (result.inverted) {
     cv::bitwise_not(gray, input);  // into a new buffer: the caller's image is never written
   } else {
@@ -139,7 +228,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
 
   // Float buffers are reused from call to call on each thread: fresh ones of this size would be
   // fresh pages from the kernel, whose faults cost more than the arithmetic.
-  thread_local struct { cv::Mat input_f, f, e, f_rounded, gamma_f; } scratch;
+  thread_local struct { cv::Mat input_f, f, e, f_rounded, curve_f; } scratch;
   cv::Mat& input_f = scratch.input_f;
   cv::Mat& f = scratch.f;
   cv::Mat& e = scratch.e;
@@ -149,15 +238,16 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   cv::GaussianBlur(input_f, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
                    cv::BORDER_REFLECT_101);
 
-  // Eqs 17-20: G_mask = I - f (eq 18), T_mask = LUT(round f) - f (eq 17) and
+  // Eqs 17-20: G_mask = I - f (eq 18), T_mask = LUT(f) - f (eq 17) and
   // E = I + sharpening G_mask + beta T_mask (eqs 19-20; T_mask only for poor images), computed as
-  // (1 + sharpening) I - (sharpening + beta) f + beta LUT(round f) in vectorised passes.
+  // (1 + sharpening) I - (sharpening + beta) f + beta LUT(f) in vectorised passes.
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
   cv::addWeighted(input_f, 1.0 + s, f, -(s + b), 0.0, e);
-  if (result.poor_quality) {
+  if (result.poor_quality && gamma_curve) {
+    // The paper's curve reads the table at round(f).
     cv::Mat& f_rounded = scratch.f_rounded;
-    f.convertTo(f_rounded, CV_8U);  // round(f), the index into the gamma table
+    f.convertTo(f_rounded, CV_8U);
     Histogram histogram{};
     for (int y = 0; y < f_rounded.rows; ++y) {
       const std::uint8_t* row = f_rounded.ptr<std::uint8_t>(y);
@@ -166,9 +256,20 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
       }
     }
     GammaLut lut = truncatedGammaLut(histogram, params.alpha, params.tau);
-    cv::Mat& gamma_f = scratch.gamma_f;
-    cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), gamma_f);
-    cv::scaleAdd(gamma_f, b, e, e);
+    cv::Mat& curve_f = scratch.curve_f;
+    cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
+    cv::scaleAdd(curve_f, b, e, e);
+  } else if (result.poor_quality) {
+    // The default mode's curve reads the tables between levels: a dark frame's filtered values
+    // carry more than its few integer levels.
+    const int tiles = std::min({params.tone_tiles, f.cols, f.rows});
+    const std::vector<WeightedHistogram> histograms = edgeWeightedHistograms(f, tiles);
+    std::vector<GammaLut> luts;
+    luts.reserve(histograms.size());
+    for (const WeightedHistogram& h : histograms) {
+      luts.push_back(equalizingLut(h, params.alpha, params.tau));
+    }
+    cv::scaleAdd(applyTileCurves(f, luts, tiles), b, e, e);
   }
   result.image = output;
   e.convertTo(result.image, CV_8U);  // round and saturate; keeps `output`'s buffer when it fits

@@ -116,6 +116,26 @@ std::vector<int> levelBudgets(int total, int n_levels, double scale_factor) {
   return budgets;
 }
 
+namespace {
+
+// Stronger response first; position breaks ties, so that every selection is deterministic.
+bool stronger(const cv::KeyPoint& a, const cv::KeyPoint& b) {
+  if (a.response != b.response) {
+    return a.response > b.response;
+  }
+  return a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x;
+}
+
+}  // namespace
+
+void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n) {
+  if (keypoints.size() <= n) {
+    return;
+  }
+  std::nth_element(keypoints.begin(), keypoints.begin() + static_cast<std::ptrdiff_t>(n), keypoints.end(), stronger);
+  keypoints.resize(n);
+}
+
 std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size) {
   if (n <= 0) {
     return {};
@@ -126,12 +146,7 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
   const int cell = std::max(1, cvRound(std::sqrt(static_cast<double>(size.area()) / n)));
   const int cols = (size.width + cell - 1) / cell;
   const int rows = (size.height + cell - 1) / cell;
-  auto better = [](const cv::KeyPoint& a, const cv::KeyPoint& b) {
-    if (a.response != b.response) {
-      return a.response > b.response;
-    }
-    return a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x;  // deterministic on ties
-  };
+  const auto better = stronger;
   std::vector<std::vector<cv::KeyPoint>> buckets(static_cast<size_t>(cols) * rows);
   for (const cv::KeyPoint& kp : keypoints) {
     const int bx = std::clamp(static_cast<int>(kp.pt.x) / cell, 0, cols - 1);
@@ -241,6 +256,9 @@ Extraction OrbExtractor::extract(const cv::Mat& gray) const {
     int carry = 0;
     for (int level = 0; level < n_levels; ++level) {
       const int budget = budgets[level] + carry;
+      if (orb.candidate_ratio > 0.0) {
+        keepStrongest(level_keypoints[level], static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
+      }
       level_keypoints[level] = selectSpread(std::move(level_keypoints[level]), budget, pyramid[level].size());
       carry = budget - static_cast<int>(level_keypoints[level].size());
     }

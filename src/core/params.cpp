@@ -22,8 +22,26 @@ void append(std::vector<std::string>& out, const std::vector<std::string>& more)
 
 }  // namespace
 
-Params Params::baseline(int fast_threshold) {
+Params Params::paper() {
   Params p;
+  p.enhance.tone_curve = ToneCurve::kGamma;
+  p.enhance.alpha = 0.2;
+  p.enhance.tau = 0.3;
+  p.enhance.beta = 0.3;
+  p.enhance.sharpening = 1.0;
+  p.enhance.gamma_mode = GammaMode::kAuto;
+  p.enhance.tone_tiles = 1;
+  p.orb.max_features = 0;
+  p.orb.candidate_ratio = 0.0;
+  return p;
+}
+
+Params Params::preset(Preset preset) {
+  return preset == Preset::kPaper ? paper() : Params();
+}
+
+Params Params::baseline(int fast_threshold) {
+  Params p = paper();
   p.enhance_enabled = false;
   p.orb.threshold_mode = ThresholdMode::kFixed;
   p.orb.fast_threshold = fast_threshold;
@@ -35,13 +53,14 @@ std::vector<std::string> validate(const EnhanceParams& p) {
   checkRange(out, "alpha", p.alpha, 0.0, 1.0);
   checkRange(out, "tau", p.tau, 0.0, 1.0);
   checkRange(out, "beta", p.beta, 0.0, 2.0);
-  checkRange(out, "sharpening", p.sharpening, 0.0, 5.0);
+  checkRange(out, "sharpening", p.sharpening, -1.0, 5.0);
   checkRange(out, "blur_ksize", p.blur_ksize, 1, 31);
   if (p.blur_ksize % 2 == 0) {
     out.push_back("blur_ksize = " + std::to_string(p.blur_ksize) + " must be odd");
   }
   checkRange(out, "blur_sigma", p.blur_sigma, 0.1, 10.0);
   checkRange(out, "std_threshold", p.std_threshold, 0.0, 1.0);
+  checkRange(out, "tone_tiles", p.tone_tiles, 1, 16);
   return out;
 }
 
@@ -59,6 +78,7 @@ std::vector<std::string> validate(const OrbParams& p) {
   checkRange(out, "max_features", p.max_features, 0, 100000);
   checkRange(out, "n_levels", p.n_levels, 1, 16);
   checkRange(out, "scale_factor", p.scale_factor, 1.01, 2.0);
+  checkRange(out, "candidate_ratio", p.candidate_ratio, 0.0, 100.0);
   return out;
 }
 
@@ -67,6 +87,84 @@ std::vector<std::string> validate(const Params& p) {
   append(out, validate(p.threshold));
   append(out, validate(p.orb));
   return out;
+}
+
+namespace {
+
+template <typename T>
+bool parseWhole(const std::string& text, T& out) {
+  std::istringstream in(text);
+  T value{};
+  in >> value;
+  if (in.fail() || !in.eof()) {
+    return false;
+  }
+  out = value;
+  return true;
+}
+
+bool parseBool(const std::string& text, bool& out) {
+  if (text == "true" || text == "1") {
+    out = true;
+  } else if (text == "false" || text == "0") {
+    out = false;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string setParam(Params& p, const std::string& name, const std::string& value) {
+  EnhanceParams& e = p.enhance;
+  ThresholdParams& t = p.threshold;
+  OrbParams& o = p.orb;
+  bool ok = false;
+  if (name == "enhance") {
+    ok = parseBool(value, p.enhance_enabled);
+  } else if (name == "tone_curve") {
+    ok = parseToneCurve(value, e.tone_curve);
+  } else if (name == "alpha") {
+    ok = parseWhole(value, e.alpha);
+  } else if (name == "tau") {
+    ok = parseWhole(value, e.tau);
+  } else if (name == "beta") {
+    ok = parseWhole(value, e.beta);
+  } else if (name == "sharpening") {
+    ok = parseWhole(value, e.sharpening);
+  } else if (name == "blur_ksize") {
+    ok = parseWhole(value, e.blur_ksize);
+  } else if (name == "blur_sigma") {
+    ok = parseWhole(value, e.blur_sigma);
+  } else if (name == "std_threshold") {
+    ok = parseWhole(value, e.std_threshold);
+  } else if (name == "gamma_mode") {
+    ok = parseGammaMode(value, e.gamma_mode);
+  } else if (name == "tone_tiles") {
+    ok = parseWhole(value, e.tone_tiles);
+  } else if (name == "grid_size") {
+    ok = parseWhole(value, t.grid_size);
+  } else if (name == "threshold_scale") {
+    ok = parseWhole(value, t.threshold_scale);
+  } else if (name == "c_min") {
+    ok = parseWhole(value, t.c_min);
+  } else if (name == "threshold_mode") {
+    ok = parseThresholdMode(value, o.threshold_mode);
+  } else if (name == "fast_threshold") {
+    ok = parseWhole(value, o.fast_threshold);
+  } else if (name == "max_features") {
+    ok = parseWhole(value, o.max_features);
+  } else if (name == "n_levels") {
+    ok = parseWhole(value, o.n_levels);
+  } else if (name == "scale_factor") {
+    ok = parseWhole(value, o.scale_factor);
+  } else if (name == "candidate_ratio") {
+    ok = parseWhole(value, o.candidate_ratio);
+  } else {
+    return "unknown parameter '" + name + "'";
+  }
+  return ok ? std::string() : "invalid value for " + name + ": '" + value + "'";
 }
 
 std::string joinMessages(const std::vector<std::string>& messages) {
@@ -91,6 +189,34 @@ const char* toString(GammaMode mode) {
 
 const char* toString(ThresholdMode mode) {
   return mode == ThresholdMode::kFixed ? "fixed" : "adaptive";
+}
+
+const char* toString(ToneCurve curve) {
+  return curve == ToneCurve::kGamma ? "gamma" : "equalize";
+}
+
+const char* toString(Preset preset) {
+  return preset == Preset::kPaper ? "paper" : "default";
+}
+
+bool parseToneCurve(const std::string& name, ToneCurve& out) {
+  for (ToneCurve c : {ToneCurve::kGamma, ToneCurve::kEqualize}) {
+    if (name == toString(c)) {
+      out = c;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool parsePreset(const std::string& name, Preset& out) {
+  for (Preset p : {Preset::kDefault, Preset::kPaper}) {
+    if (name == toString(p)) {
+      out = p;
+      return true;
+    }
+  }
+  return false;
 }
 
 bool parseGammaMode(const std::string& name, GammaMode& out) {

@@ -24,7 +24,7 @@
 
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
-#include "evaluation.h"
+#include "enhanced_orb/evaluation/metrics.h"
 
 namespace fs = std::filesystem;
 namespace ev = enhanced_orb::evaluation;

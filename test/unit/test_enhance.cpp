@@ -90,7 +90,7 @@ TEST(Lambda, IsTheStandardDeviationOfTheScaledImage) {
 }
 
 TEST(Quality, ModesAndThePapersLiteralTest) {
-  EnhanceParams p;
+  EnhanceParams p = Params::paper().enhance;
   EXPECT_TRUE(isPoorQuality(0.30, p));  // lambda > 0.25: "poor", as the paper states it
   EXPECT_FALSE(isPoorQuality(0.25, p));
   p.gamma_mode = GammaMode::kAlways;
@@ -137,7 +137,7 @@ TEST(GammaLut, TwoLevelHistogram) {
 }
 
 TEST(Enhance, NoSharpeningNoMaskIsTheIdentity) {
-  EnhanceParams p;
+  EnhanceParams p = Params::paper().enhance;
   p.sharpening = 0.0;
   p.beta = 0.0;
   const cv::Mat dark = darkScene();
@@ -152,7 +152,7 @@ TEST(Enhance, NoSharpeningNoMaskIsTheIdentity) {
 
 TEST(Enhance, GoodImageIsOnlySharpened) {
   // Not poor: E = I + sharpening (I - f) whatever beta is (eq 19).
-  EnhanceParams p;
+  EnhanceParams p = Params::paper().enhance;
   p.gamma_mode = GammaMode::kNever;
   p.beta = 1.5;
   p.sharpening = 0.0;
@@ -166,7 +166,7 @@ TEST(Enhance, GoodImageIsOnlySharpened) {
 }
 
 TEST(Enhance, PoorImageMatchesTheEquations) {
-  EnhanceParams p;
+  EnhanceParams p = Params::paper().enhance;
   p.gamma_mode = GammaMode::kAlways;
   const cv::Mat image = darkScene();
   const EnhanceResult r = enhance(image, p);
@@ -177,7 +177,7 @@ TEST(Enhance, PoorImageMatchesTheEquations) {
 }
 
 TEST(Enhance, BrightPoorImageIsInvertedAndBack) {
-  EnhanceParams p;
+  EnhanceParams p = Params::paper().enhance;
   p.gamma_mode = GammaMode::kAlways;
   const cv::Mat dark = darkScene();
   cv::Mat bright;
@@ -192,7 +192,7 @@ TEST(Enhance, BrightPoorImageIsInvertedAndBack) {
 }
 
 TEST(Enhance, AutoModeFollowsLambda) {
-  EnhanceParams p;
+  EnhanceParams p = Params::paper().enhance;
   const cv::Mat high_contrast = test::syntheticScene(cv::Size(160, 120));
   const cv::Mat low_contrast = darkScene() * 0.2;
   const EnhanceResult a = enhance(high_contrast, p);
@@ -209,4 +209,85 @@ TEST(Enhance, BadInput) {
   EnhanceParams bad;
   bad.tau = 2.0;
   EXPECT_THROW(enhance(darkScene(), bad), std::invalid_argument);
+}
+
+TEST(ToneCurve, EqualizingLutIsMonotoneWithSlopeAtLeastTau) {
+  WeightedHistogram h{};
+  for (int i = 20; i < 60; ++i) {
+    h[i] = 1.0 + (i % 7);
+  }
+  for (double tau : {0.0, 0.3, 1.0}) {
+    const GammaLut lut = equalizingLut(h, 0.5, tau);
+    EXPECT_NEAR(lut[255], 255.0f, 1e-3);
+    for (int i = 0; i < 255; ++i) {
+      EXPECT_GE(lut[i + 1] - lut[i], tau - 1e-4) << "tau " << tau << " level " << i;
+    }
+    if (tau == 1.0) {
+      EXPECT_NEAR(lut[100], 100.0f, 1e-3);  // tau 1: the identity
+    }
+  }
+  // The occupied levels are stretched: levels 20..60 span most of the range at tau 0.
+  const GammaLut stretched = equalizingLut(h, 0.5, 0.0);
+  EXPECT_LT(stretched[19], 5.0f);
+  EXPECT_GT(stretched[59], 250.0f);
+  const GammaLut empty = equalizingLut(WeightedHistogram{}, 0.5, 0.3);
+  EXPECT_FLOAT_EQ(empty[77], 77.0f);
+}
+
+TEST(ToneCurve, TileCurvesInterpolateBetweenTileCentres) {
+  cv::Mat f(40, 40, CV_32F, cv::Scalar(10.5f));
+  GammaLut identity{}, doubled{};
+  for (int i = 0; i < 256; ++i) {
+    identity[i] = static_cast<float>(i);
+    doubled[i] = static_cast<float>(std::min(255, 2 * i));
+  }
+  // One tile with the identity gives f back, read between levels.
+  const cv::Mat same = applyTileCurves(f, {identity}, 1);
+  EXPECT_NEAR(cv::norm(same, f, cv::NORM_INF), 0.0, 1e-4);
+  // Two tiles side by side: left identity, right doubled; the middle blends.
+  const cv::Mat blend = applyTileCurves(f, {identity, doubled, identity, doubled}, 2);
+  EXPECT_NEAR(blend.at<float>(20, 0), 10.5f, 1e-4);
+  EXPECT_NEAR(blend.at<float>(20, 39), 21.0f, 1e-4);
+  const float middle = blend.at<float>(20, 20);
+  EXPECT_GT(middle, 10.5f);
+  EXPECT_LT(middle, 21.0f);
+}
+
+TEST(ToneCurve, EdgeWeightedHistogramIgnoresFlatRegions) {
+  cv::Mat f(64, 64, CV_32F, cv::Scalar(200.0f));  // flat, bright
+  f(cv::Rect(0, 0, 32, 64)).setTo(cv::Scalar(30.0f));
+  const std::vector<WeightedHistogram> h = edgeWeightedHistograms(f, 1);
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_EQ(h[0][100], 0.0);
+  EXPECT_EQ(h[0][200] > 0.0, true);  // only the pixels along the edge count
+  double total = 0.0;
+  for (double w : h[0]) {
+    total += w;
+  }
+  EXPECT_GT(total, 0.0);
+  EXPECT_LT(h[0][200] + h[0][30], total + 1e-9);
+  EXPECT_EQ(edgeWeightedHistograms(f, 4).size(), 16u);
+}
+
+TEST(Enhance, DefaultModeEqualisesDarkAndBrightAlikeWithoutInversion) {
+  const cv::Mat scene = test::syntheticScene();
+  cv::Mat dark, bright;
+  scene.convertTo(dark, CV_8U, 0.15);
+  scene.convertTo(bright, CV_8U, 0.3, 170);
+  const EnhanceParams p;
+  const EnhanceResult d = enhance(dark, p);
+  const EnhanceResult b = enhance(bright, p);
+  EXPECT_FALSE(d.inverted);
+  EXPECT_FALSE(b.inverted);
+  EXPECT_TRUE(d.poor_quality);  // gamma_mode always: the curve runs on every frame
+  cv::Scalar dm, ds, bm, bs;
+  cv::meanStdDev(d.image, dm, ds);
+  cv::meanStdDev(b.image, bm, bs);
+  cv::Scalar im, is, jm, js;
+  cv::meanStdDev(dark, im, is);
+  cv::meanStdDev(bright, jm, js);
+  EXPECT_GT(ds[0], 2.0 * is[0]);  // contrast stretched
+  EXPECT_GT(bs[0], 2.0 * js[0]);
+  EXPECT_LT(std::abs(dm[0] - 128.0), 0.5 * std::abs(im[0] - 128.0));  // both brought towards mid-gray
+  EXPECT_LT(std::abs(bm[0] - 128.0), 0.5 * std::abs(jm[0] - 128.0));
 }

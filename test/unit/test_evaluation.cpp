@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
 
-#include "../../src/tools/evaluation.h"
+#include "enhanced_orb/evaluation/degrade.h"
+#include "enhanced_orb/evaluation/metrics.h"
+
+namespace ev = enhanced_orb::evaluation;
 
 using namespace enhanced_orb::evaluation;
 
@@ -55,4 +59,51 @@ TEST(Evaluation, EpipolarGroundTruthOfASidewaysStep) {
   const GroundTruth truth = epipolar(cam, cv::Matx44d::eye(), moved);
   EXPECT_TRUE(truth({300, 200}, {260, 201}));   // same row, 1 px off
   EXPECT_FALSE(truth({300, 200}, {260, 210}));  // 10 rows off
+}
+
+TEST(Pose, AucOfPerfectAndFailedEstimates) {
+  EXPECT_DOUBLE_EQ(ev::poseAuc({0.0, 0.0}, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(ev::poseAuc({180.0, 180.0}, 10.0), 0.0);
+  EXPECT_NEAR(ev::poseAuc({5.0}, 10.0), 0.5, 1e-9);           // recall 1 from 5 degrees on
+  EXPECT_NEAR(ev::poseAuc({0.0, 180.0}, 10.0), 0.5, 1e-9);    // half the pairs perfect
+}
+
+TEST(Pose, EstimateRecoversAKnownMotion) {
+  ev::Camera cam;
+  cam.K = cv::Matx33d(450, 0, 376, 0, 450, 240, 0, 0, 1);
+  cam.distortion = {0, 0, 0, 0};
+  cam.T_BS = cv::Matx44d::eye();
+  cv::Matx33d R;
+  cv::Rodrigues(cv::Vec3d(0.01, -0.02, 0.0175), R);
+  const cv::Vec3d t(0.3, 0.05, 0.02);
+  cv::RNG rng(3);
+  std::vector<cv::Point2f> p1, p2;
+  for (int i = 0; i < 200; ++i) {
+    const cv::Vec3d X(rng.uniform(-2.0, 2.0), rng.uniform(-1.5, 1.5), rng.uniform(3.0, 8.0));
+    const cv::Vec3d Y = R * X + t;
+    const cv::Vec3d a = cam.K * X, b = cam.K * Y;
+    p1.emplace_back(a[0] / a[2], a[1] / a[2]);
+    p2.emplace_back(b[0] / b[2], b[1] / b[2]);
+  }
+  const ev::PoseEstimate est = ev::estimatePose(cam, cam, p1, p2);
+  ASSERT_TRUE(est.ok);
+  const ev::PoseError err = ev::poseError(est, {R, t});
+  EXPECT_LT(err.rotation_deg, 0.5);
+  EXPECT_LT(err.translation_deg, 2.0);
+  EXPECT_DOUBLE_EQ(ev::poseError(ev::PoseEstimate(), {R, t}).max(), 180.0);
+}
+
+TEST(Degrade, LowLightDarkensAndAddsSignalDependentNoise) {
+  cv::Mat flat(100, 100, CV_8U, cv::Scalar(200));
+  ev::SensorModel sensor;
+  const cv::Mat dark = ev::lowLight(flat, cv::Mat(), 0.2, sensor, 1);
+  cv::Scalar m, s;
+  cv::meanStdDev(dark, m, s);
+  EXPECT_NEAR(m[0], 40.0, 1.5);
+  EXPECT_GT(s[0], 3.0);  // shot noise of 80 electrons at 2 per DN: about 4.5 DN
+  EXPECT_EQ(cv::norm(dark, ev::lowLight(flat, cv::Mat(), 0.2, sensor, 1), cv::NORM_INF), 0.0);  // seeded
+  EXPECT_THROW(ev::Degradation{"sunburn"}.apply(flat, 0), std::invalid_argument);
+  for (const ev::Degradation& d : ev::standardDegradations()) {
+    EXPECT_EQ(d.apply(flat, 2).size(), flat.size()) << d.name;
+  }
 }

@@ -214,7 +214,7 @@ TEST(Budget, SelectionIsSpreadAndKeepsTheBest) {
 
 TEST(Extractor, UnlimitedBudgetKeepsEveryCornerOfEveryLevel) {
   const cv::Mat image = test::syntheticScene();
-  Params params;
+  Params params = Params::paper();
   const Extraction r = OrbExtractor(params).extract(image);
   const std::vector<cv::Mat> pyramid = buildPyramid(r.image, 8, 1.2);
   ASSERT_EQ(r.level_thresholds.size(), pyramid.size());
@@ -290,9 +290,81 @@ TEST(Extractor, DarkenedEurocFrameGivesMoreKeypointsThanBaseline) {
   }
   cv::Mat dark;
   frame.convertTo(dark, CV_8U, 0.4);  // I * 0.4
-  const size_t improved = OrbExtractor().extract(dark).keypoints.size();
+  const size_t improved = OrbExtractor(Params::paper()).extract(dark).keypoints.size();
   const size_t baseline = OrbExtractor(Params::baseline()).extract(dark).keypoints.size();
   RecordProperty("improved", static_cast<int>(improved));
   RecordProperty("baseline", static_cast<int>(baseline));
   EXPECT_GT(improved, baseline) << "improved " << improved << ", baseline " << baseline;
+}
+
+TEST(Extractor, CandidateRatioOneKeepsTheStrongestOfEachLevel) {
+  const cv::Mat image = test::syntheticScene(cv::Size(752, 480), 400);
+  Params all = Params::paper();
+  all.enhance_enabled = false;
+  Params top = all;
+  top.orb.max_features = 300;
+  top.orb.candidate_ratio = 1.0;
+  const Extraction every = OrbExtractor(all).extract(image);
+  const Extraction kept = OrbExtractor(top).extract(image);
+  const std::vector<int> budgets = levelBudgets(300, top.orb.n_levels, top.orb.scale_factor);
+  std::vector<float> level0;
+  for (const cv::KeyPoint& kp : every.keypoints) {
+    if (kp.octave == 0) {
+      level0.push_back(kp.response);
+    }
+  }
+  ASSERT_GT(level0.size(), static_cast<size_t>(budgets[0]));
+  std::sort(level0.rbegin(), level0.rend());
+  int kept0 = 0;
+  for (const cv::KeyPoint& kp : kept.keypoints) {
+    if (kp.octave == 0) {
+      ++kept0;
+      EXPECT_GE(kp.response, level0[budgets[0] - 1]);
+    }
+  }
+  EXPECT_EQ(kept0, budgets[0]);
+  // Spread over all candidates (ratio 0) keeps weaker corners too.
+  top.orb.candidate_ratio = 0.0;
+  float weakest = 1e9f;
+  for (const cv::KeyPoint& kp : OrbExtractor(top).extract(image).keypoints) {
+    if (kp.octave == 0) {
+      weakest = std::min(weakest, kp.response);
+    }
+  }
+  EXPECT_LT(weakest, level0[budgets[0] - 1]);
+}
+
+TEST(Extractor, DefaultModeParametersEachChangeTheOutput) {
+  cv::Mat frame = test::eurocFrame();
+  if (frame.empty()) {
+    frame = test::syntheticScene(cv::Size(752, 480), 400);
+  }
+  cv::Mat dark;
+  frame.convertTo(dark, CV_8U, 0.3);
+  const Extraction reference = OrbExtractor().extract(dark);
+  auto differs = [&](const char* name, const char* value) {
+    Params p;
+    EXPECT_EQ(setParam(p, name, value), "");
+    const Extraction r = OrbExtractor(p).extract(dark);
+    const bool image_differs = cv::norm(r.image, reference.image, cv::NORM_INF) > 0;
+    bool keypoints_differ = r.keypoints.size() != reference.keypoints.size();
+    for (size_t i = 0; !keypoints_differ && i < r.keypoints.size(); ++i) {
+      keypoints_differ = r.keypoints[i].pt != reference.keypoints[i].pt;
+    }
+    return image_differs || keypoints_differ;
+  };
+  EXPECT_TRUE(differs("alpha", "1.0"));
+  EXPECT_TRUE(differs("tau", "0.8"));
+  EXPECT_TRUE(differs("beta", "0.5"));
+  EXPECT_TRUE(differs("sharpening", "0.5"));
+  EXPECT_TRUE(differs("tone_tiles", "1"));
+  EXPECT_TRUE(differs("c_min", "80"));  // at a budget: once fewer corners than the candidates pass it
+  EXPECT_TRUE(differs("threshold_scale", "1.5"));
+  EXPECT_TRUE(differs("candidate_ratio", "0"));
+  // c_min lifts every threshold.
+  Params high;
+  high.threshold.c_min = 40;
+  double lo = 0.0;
+  cv::minMaxLoc(OrbExtractor(high).extract(dark).cell_thresholds, &lo);
+  EXPECT_GE(lo, 40.0);
 }

@@ -18,8 +18,10 @@ std::string onlyMessage(const std::vector<std::string>& messages) {
 
 }  // namespace
 
-TEST(Params, DefaultsAreThePapersAndValid) {
-  const Params p;
+TEST(Params, PaperPresetIsThePapersAndValid) {
+  const Params p = Params::paper();
+  EXPECT_EQ(p.enhance.tone_curve, ToneCurve::kGamma);
+  EXPECT_DOUBLE_EQ(p.orb.candidate_ratio, 0.0);
   EXPECT_DOUBLE_EQ(p.enhance.alpha, 0.2);
   EXPECT_DOUBLE_EQ(p.enhance.tau, 0.3);
   EXPECT_DOUBLE_EQ(p.enhance.beta, 0.3);
@@ -104,4 +106,61 @@ TEST(Params, ModeNamesRoundTrip) {
   GammaMode unchanged = GammaMode::kNever;
   EXPECT_FALSE(parseGammaMode("sometimes", unchanged));
   EXPECT_EQ(unchanged, GammaMode::kNever);
+}
+
+TEST(Params, DefaultModeIsValidAndDiffersFromThePaperWhereDocumented) {
+  const Params p;
+  EXPECT_TRUE(validate(p).empty()) << joinMessages(validate(p));
+  EXPECT_EQ(p.enhance.tone_curve, ToneCurve::kEqualize);
+  EXPECT_EQ(p.enhance.gamma_mode, GammaMode::kAlways);
+  EXPECT_DOUBLE_EQ(p.enhance.sharpening, -1.0);  // no unsharp mask: E = f + beta T_mask
+  EXPECT_EQ(p.orb.max_features, 1000);
+  EXPECT_GT(p.orb.candidate_ratio, 1.0);
+  // The threshold stage is the paper's.
+  EXPECT_EQ(p.threshold.c_min, Params::paper().threshold.c_min);
+  EXPECT_EQ(p.threshold.grid_size, Params::paper().threshold.grid_size);
+  EXPECT_EQ(Params::preset(Preset::kPaper).enhance.tone_curve, ToneCurve::kGamma);
+  EXPECT_EQ(Params::preset(Preset::kDefault).enhance.tone_curve, ToneCurve::kEqualize);
+}
+
+TEST(Params, BaselineIsThePaperWithoutEnhancement) {
+  const Params b = Params::baseline();
+  EXPECT_FALSE(b.enhance_enabled);
+  EXPECT_EQ(b.orb.threshold_mode, ThresholdMode::kFixed);
+  EXPECT_DOUBLE_EQ(b.orb.candidate_ratio, 0.0);
+}
+
+TEST(Params, SetParamByNameParsesWholeValuesOnly) {
+  Params p;
+  EXPECT_EQ(setParam(p, "alpha", "0.7"), "");
+  EXPECT_DOUBLE_EQ(p.enhance.alpha, 0.7);
+  EXPECT_EQ(setParam(p, "tone_curve", "gamma"), "");
+  EXPECT_EQ(p.enhance.tone_curve, ToneCurve::kGamma);
+  EXPECT_EQ(setParam(p, "c_min", "12"), "");
+  EXPECT_EQ(p.threshold.c_min, 12);
+  EXPECT_EQ(setParam(p, "enhance", "false"), "");
+  EXPECT_FALSE(p.enhance_enabled);
+  EXPECT_NE(setParam(p, "c_min", "12.5"), "");
+  EXPECT_EQ(p.threshold.c_min, 12);
+  EXPECT_NE(setParam(p, "alpha", "abc"), "");
+  EXPECT_NE(setParam(p, "tone_curve", "clahe"), "");
+  EXPECT_NE(setParam(p, "no_such_parameter", "1"), "");
+  EXPECT_EQ(setParam(p, "candidate_ratio", "101"), "");  // parsed; validate() rejects the range
+  EXPECT_FALSE(validate(p).empty());
+}
+
+TEST(Params, NamesRoundTrip) {
+  for (Preset preset : {Preset::kDefault, Preset::kPaper}) {
+    Preset parsed = Preset::kDefault;
+    ASSERT_TRUE(parsePreset(toString(preset), parsed));
+    EXPECT_EQ(parsed, preset);
+  }
+  for (ToneCurve curve : {ToneCurve::kGamma, ToneCurve::kEqualize}) {
+    ToneCurve parsed = ToneCurve::kGamma;
+    ASSERT_TRUE(parseToneCurve(toString(curve), parsed));
+    EXPECT_EQ(parsed, curve);
+  }
+  Preset unchanged = Preset::kPaper;
+  EXPECT_FALSE(parsePreset("fast", unchanged));
+  EXPECT_EQ(unchanged, Preset::kPaper);
 }

@@ -1,5 +1,6 @@
-#include "evaluation.h"
+#include "enhanced_orb/evaluation/metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -15,14 +16,18 @@ GroundTruth identity(double tolerance) {
   return [tolerance](const cv::Point2f& p1, const cv::Point2f& p2) { return cv::norm(p1 - p2) <= tolerance; };
 }
 
+std::vector<cv::DMatch> mutualMatches(const cv::Mat& d1, const cv::Mat& d2) {
+  std::vector<cv::DMatch> matches;
+  if (!d1.empty() && !d2.empty()) {
+    cv::BFMatcher(cv::NORM_HAMMING, true).match(d1, d2, matches);
+  }
+  return matches;
+}
+
 MatchCounts matchAndCount(const std::vector<cv::KeyPoint>& kp1, const cv::Mat& d1, const std::vector<cv::KeyPoint>& kp2,
                           const cv::Mat& d2, const GroundTruth& truth) {
   MatchCounts counts;
-  if (d1.empty() || d2.empty()) {
-    return counts;
-  }
-  std::vector<cv::DMatch> matches;
-  cv::BFMatcher(cv::NORM_HAMMING, true).match(d1, d2, matches);
+  const std::vector<cv::DMatch> matches = mutualMatches(d1, d2);
   counts.matches = static_cast<int>(matches.size());
   for (const cv::DMatch& m : matches) {
     counts.correct += truth(kp1[m.queryIdx].pt, kp2[m.trainIdx].pt);
@@ -145,20 +150,105 @@ std::optional<cv::Matx44d> Trajectory::at(std::int64_t stamp, std::int64_t toler
   return best->second;
 }
 
+RelativePose groundTruthPose(const Camera& camera1, const cv::Matx44d& T_WB1, const Camera& camera2,
+                             const cv::Matx44d& T_WB2) {
+  // Camera 1 in camera 2: T_C2C1 = (T_WB2 T_BS2)^-1 T_WB1 T_BS1.
+  const cv::Matx44d T_21 = (T_WB2 * camera2.T_BS).inv() * (T_WB1 * camera1.T_BS);
+  return {T_21.get_minor<3, 3>(0, 0), cv::Vec3d(T_21(0, 3), T_21(1, 3), T_21(2, 3))};
+}
+
+bool isStatic(const RelativePose& pose, double min_baseline) {
+  return cv::norm(pose.t) < min_baseline;
+}
+
+GroundTruth rotationOnly(const Camera& camera1, const Camera& camera2, const RelativePose& pose, double tolerance) {
+  const cv::Matx33d H = camera2.K * pose.R * camera1.K.inv();
+  return [H, camera1, camera2, tolerance](const cv::Point2f& p1, const cv::Point2f& p2) {
+    std::vector<cv::Point2f> u1, u2;
+    cv::undistortPoints(std::vector<cv::Point2f>{p1}, u1, camera1.K, camera1.distortion, cv::noArray(), camera1.K);
+    cv::undistortPoints(std::vector<cv::Point2f>{p2}, u2, camera2.K, camera2.distortion, cv::noArray(), camera2.K);
+    const cv::Vec3d x = H * cv::Vec3d(u1[0].x, u1[0].y, 1.0);
+    return std::hypot(x[0] / x[2] - u2[0].x, x[1] / x[2] - u2[0].y) <= tolerance;
+  };
+}
+
+PoseEstimate estimatePose(const Camera& camera1, const Camera& camera2, const std::vector<cv::Point2f>& p1,
+                          const std::vector<cv::Point2f>& p2) {
+  PoseEstimate estimate;
+  if (p1.size() < 5 || p1.size() != p2.size()) {
+    return estimate;
+  }
+  std::vector<cv::Point2f> n1, n2;
+  cv::undistortPoints(p1, n1, camera1.K, camera1.distortion);
+  cv::undistortPoints(p2, n2, camera2.K, camera2.distortion);
+  const double focal = 0.25 * (camera1.K(0, 0) + camera1.K(1, 1) + camera2.K(0, 0) + camera2.K(1, 1));
+  cv::theRNG().state = 0x2545F4914F6CDD1DULL;  // the same RANSAC samples for every method
+  cv::Mat mask;
+  const cv::Mat E = cv::findEssentialMat(n1, n2, cv::Mat::eye(3, 3, CV_64F), cv::RANSAC, 0.999, 1.0 / focal, mask);
+  if (E.rows != 3 || E.cols != 3) {
+    return estimate;  // none, or several solutions stacked: treat as a failure
+  }
+  cv::Mat R, t;
+  estimate.inliers = cv::recoverPose(E, n1, n2, cv::Mat::eye(3, 3, CV_64F), R, t, mask);
+  estimate.ok = estimate.inliers >= 5;
+  estimate.R = cv::Matx33d(R);
+  estimate.t = cv::Vec3d(t);
+  return estimate;
+}
+
+PoseError poseError(const PoseEstimate& estimate, const RelativePose& truth) {
+  PoseError error;
+  if (!estimate.ok) {
+    return error;
+  }
+  const cv::Matx33d dR = estimate.R.t() * truth.R;
+  const double cos_r = std::clamp((cv::trace(dR) - 1.0) / 2.0, -1.0, 1.0);
+  error.rotation_deg = std::acos(cos_r) * 180.0 / CV_PI;
+  const double norms = cv::norm(estimate.t) * cv::norm(truth.t);
+  if (norms > 0.0) {
+    const double cos_t = std::clamp(std::abs(estimate.t.dot(truth.t)) / norms, 0.0, 1.0);
+    error.translation_deg = std::acos(cos_t) * 180.0 / CV_PI;
+  }
+  return error;
+}
+
+double poseAuc(std::vector<double> errors, double threshold) {
+  if (errors.empty() || threshold <= 0.0) {
+    return 0.0;
+  }
+  std::sort(errors.begin(), errors.end());
+  // Recall r(e) = share of errors <= e, a step function: integrate it over [0, threshold].
+  const double n = static_cast<double>(errors.size());
+  double area = 0.0;
+  double previous = 0.0;
+  for (size_t i = 0; i < errors.size() && errors[i] < threshold; ++i) {
+    area += (errors[i] - previous) * (static_cast<double>(i) / n);
+    previous = errors[i];
+  }
+  const double reached = static_cast<double>(std::upper_bound(errors.begin(), errors.end(), threshold - 1e-12) -
+                                             errors.begin());
+  area += (threshold - previous) * (reached / n);
+  return area / threshold;
+}
+
 GroundTruth epipolar(const Camera& camera, const cv::Matx44d& T_WB1, const cv::Matx44d& T_WB2, double tolerance) {
-  // Camera 1 in camera 2: T_C2C1 = (T_WB2 T_BS)^-1 T_WB1 T_BS; E = [t]x R maps normalised x1 to a line of x2.
-  const cv::Matx44d T_21 = (T_WB2 * camera.T_BS).inv() * (T_WB1 * camera.T_BS);
-  const cv::Matx33d R = T_21.get_minor<3, 3>(0, 0);
-  const cv::Vec3d t(T_21(0, 3), T_21(1, 3), T_21(2, 3));
+  return epipolar(camera, T_WB1, camera, T_WB2, tolerance);
+}
+
+GroundTruth epipolar(const Camera& camera1, const cv::Matx44d& T_WB1, const Camera& camera2, const cv::Matx44d& T_WB2,
+                     double tolerance) {
+  // E = [t]x R maps normalised x1 to a line of x2.
+  const RelativePose pose = groundTruthPose(camera1, T_WB1, camera2, T_WB2);
+  const cv::Matx33d R = pose.R;
+  const cv::Vec3d t = pose.t;
   const cv::Matx33d tx(0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0);
   const cv::Matx33d E = tx * R;
-  const double focal = 0.5 * (camera.K(0, 0) + camera.K(1, 1));
-  const cv::Matx33d K = camera.K;
-  const std::vector<double> distortion = camera.distortion;
-  return [E, focal, K, distortion, tolerance](const cv::Point2f& p1, const cv::Point2f& p2) {
-    std::vector<cv::Point2f> in{p1, p2}, out;
-    cv::undistortPoints(in, out, K, distortion);
-    const cv::Vec3d x1(out[0].x, out[0].y, 1.0), x2(out[1].x, out[1].y, 1.0);
+  const double focal = 0.25 * (camera1.K(0, 0) + camera1.K(1, 1) + camera2.K(0, 0) + camera2.K(1, 1));
+  return [E, focal, camera1, camera2, tolerance](const cv::Point2f& p1, const cv::Point2f& p2) {
+    std::vector<cv::Point2f> n1, n2;
+    cv::undistortPoints(std::vector<cv::Point2f>{p1}, n1, camera1.K, camera1.distortion);
+    cv::undistortPoints(std::vector<cv::Point2f>{p2}, n2, camera2.K, camera2.distortion);
+    const cv::Vec3d x1(n1[0].x, n1[0].y, 1.0), x2(n2[0].x, n2[0].y, 1.0);
     const cv::Vec3d l2 = E * x1;      // line of x2 in image 2
     const cv::Vec3d l1 = E.t() * x2;  // line of x1 in image 1
     const double d2 = std::abs(l2.dot(x2)) / std::hypot(l2[0], l2[1]);

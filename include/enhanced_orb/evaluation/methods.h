@@ -1,0 +1,40 @@
+// The extractors compared at equal budgets: this package's default mode, the paper preset, the
+// original ORB (baseline), cv::ORB and CLAHE (3.0, 8x8) followed by cv::ORB.
+#ifndef ENHANCED_ORB_EVALUATION_METHODS_H
+#define ENHANCED_ORB_EVALUATION_METHODS_H
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "enhanced_orb/params.h"
+
+namespace enhanced_orb {
+namespace evaluation {
+
+struct Features {
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  double ms = 0.0;  // wall-clock extraction time, enhancement included
+};
+
+struct Method {
+  std::string name;
+  int budget = 1000;  // 0: every corner
+  std::function<Features(const cv::Mat& gray)> run;
+};
+
+// "default", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB".
+std::vector<std::string> methodNames();
+
+// A method by name at a budget (cv::ORB asks for 10^6 features when budget is 0). `params` replaces
+// the default mode's parameters (e.g. for an ablation); the budget is set on it.
+// Throws std::invalid_argument for an unknown name.
+Method makeMethod(const std::string& name, int budget, const Params& params = Params());
+
+}  // namespace evaluation
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_EVALUATION_METHODS_H

@@ -1,0 +1,58 @@
+#include "enhanced_orb/evaluation/methods.h"
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "enhanced_orb/orb_extractor.h"
+
+namespace enhanced_orb {
+namespace evaluation {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<std::string> methodNames() {
+  return {"default", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB"};
+}
+
+Method makeMethod(const std::string& name, int budget, const Params& params) {
+  if (name == "default" || name == "paper" || name == "baseline") {
+    Params p = name == "default" ? params : name == "paper" ? Params::paper() : Params::baseline();
+    p.orb.max_features = budget;
+    auto extractor = std::make_shared<const OrbExtractor>(p);
+    return {name, budget, [extractor](const cv::Mat& gray) {
+              const auto start = std::chrono::steady_clock::now();
+              Extraction r = extractor->extract(gray);
+              return Features{std::move(r.keypoints), r.descriptors, msSince(start)};
+            }};
+  }
+  if (name == "cv::ORB" || name == "CLAHE+cv::ORB") {
+    cv::Ptr<cv::ORB> orb = cv::ORB::create(budget > 0 ? budget : 1000000, 1.2f, 8);
+    cv::Ptr<cv::CLAHE> clahe = name == "CLAHE+cv::ORB" ? cv::createCLAHE(3.0, cv::Size(8, 8)) : nullptr;
+    return {name, budget, [orb, clahe](const cv::Mat& gray) {
+              Features f;
+              const auto start = std::chrono::steady_clock::now();
+              cv::Mat input;  // a new buffer: CLAHE would write into a header of `gray` in place
+              if (clahe) {
+                clahe->apply(gray, input);
+              } else {
+                input = gray;
+              }
+              orb->detectAndCompute(input, cv::noArray(), f.keypoints, f.descriptors);
+              f.ms = msSince(start);
+              return f;
+            }};
+  }
+  throw std::invalid_argument("unknown method '" + name + "'");
+}
+
+}  // namespace evaluation
+}  // namespace enhanced_orb

@@ -1,0 +1,402 @@
+// enhanced_orb_compare: every method at equal budgets under real and modelled lighting change.
+// Writes CSV files that scripts/results.py turns into the tables and plots of docs/RESULTS.md.
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+
+#include "enhanced_orb/evaluation/dataset.h"
+#include "enhanced_orb/evaluation/degrade.h"
+#include "enhanced_orb/evaluation/methods.h"
+#include "enhanced_orb/evaluation/metrics.h"
+
+namespace fs = std::filesystem;
+namespace ev = enhanced_orb::evaluation;
+
+namespace {
+
+const char* const kUsage = R"(usage: enhanced_orb_compare [--lighting DIR] [--euroc DIR] [options]
+
+Compares the extractors at equal budgets (matching: mutual Hamming nearest neighbours).
+  --lighting DIR     a folder of image-pair sets (each subfolder with a pairs.csv): correct
+                     matches within 3 px (4 px for a set named webcam) and repeatability
+  --euroc DIR        a EuRoC sequence: each frame against its degraded copies (identity ground
+                     truth), and frame pairs with both frames degraded alike (epipolar ground
+                     truth within 3 px; relative pose from the matches by RANSAC on E)
+options:
+  --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv
+                     (default: results/compare)
+  --budgets LIST     feature budgets (default 500,1000,2000)
+  --methods LIST     of default,paper,baseline,cv::ORB,CLAHE+cv::ORB (default: all)
+  --set NAME=VALUE   a parameter of the default mode (repeatable; e.g. --set alpha=0.7)
+  --label NAME       the default mode's name in the output (default: default)
+  --degradations L   EuRoC degradations (default: all of none,lowlight,lowlight_gain,spotlight,
+                     gradient,dark,bright,gamma_0.5,gamma_2,noise_10)
+  --every N          EuRoC frames compared with their degraded copies: every N-th (default 5)
+  --steps LIST       EuRoC frame pairs K frames apart (default 1,5,10)
+  --pair-every N     a frame pair starts every N-th frame (default 3)
+  --threads N        worker threads (default 2; each extraction itself runs on one)
+  -h, --help         this text
+Exit codes: 0 done, 1 an input could not be read, 2 bad arguments.
+)";
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) {
+      out.push_back(item);
+    }
+  }
+  return out;
+}
+
+bool parsePositive(const std::string& text, int& out) {
+  std::istringstream in(text);
+  int v = 0;
+  in >> v;
+  if (in.fail() || !in.eof() || v < 0) {
+    return false;
+  }
+  out = v;
+  return true;
+}
+
+struct Options {
+  std::string lighting, euroc, output = "results/compare", label = "default";
+  std::vector<int> budgets{500, 1000, 2000};
+  std::vector<std::string> methods = ev::methodNames();
+  std::vector<std::string> degradations;
+  enhanced_orb::Params params;
+  int every = 5, pair_every = 3, threads = 2;
+  std::vector<int> steps{1, 5, 10};
+};
+
+// Runs body(i) for i in [0, n) on `threads` workers; each worker gets its own copy of the methods.
+template <typename Body>
+void parallelFor(int n, int threads, Body body) {
+  std::atomic<int> next{0};
+  std::vector<std::thread> pool;
+  for (int w = 0; w < std::max(1, threads); ++w) {
+    pool.emplace_back([&, w] {
+      for (int i = next++; i < n; i = next++) {
+        body(w, i);
+      }
+    });
+  }
+  for (std::thread& t : pool) {
+    t.join();
+  }
+}
+
+void progress(const std::string& what, int done, int total) {
+  std::cerr << "\r" << what << " " << done << "/" << total << std::string(8, ' ') << std::flush;
+  if (done == total) {
+    std::cerr << "\n";
+  }
+}
+
+// One method (one name and budget) with a private instance per worker thread.
+struct Runner {
+  std::string label;
+  int budget;
+  std::vector<ev::Method> per_worker;
+  ev::Features run(int worker, const cv::Mat& gray) const { return per_worker[worker].run(gray); }
+};
+
+std::vector<Runner> runners(const Options& o) {
+  std::vector<Runner> out;
+  for (int budget : o.budgets) {
+    for (const std::string& name : o.methods) {
+      Runner r{name == "default" ? o.label : name, budget, {}};
+      for (int w = 0; w < o.threads; ++w) {
+        r.per_worker.push_back(ev::makeMethod(name, budget, o.params));
+      }
+      out.push_back(std::move(r));
+    }
+  }
+  return out;
+}
+
+void compareLighting(const Options& o, const std::vector<Runner>& all) {
+  std::vector<ev::ImagePair> pairs;
+  std::vector<fs::path> sets;
+  for (const auto& entry : fs::directory_iterator(o.lighting)) {
+    if (fs::is_regular_file(entry.path() / "pairs.csv")) {
+      sets.push_back(entry.path());
+    }
+  }
+  std::sort(sets.begin(), sets.end());
+  for (const fs::path& set : sets) {
+    for (ev::ImagePair& p : ev::readPairs(set.string())) {
+      pairs.push_back(std::move(p));
+    }
+  }
+  std::ofstream csv(fs::path(o.output) / "lighting.csv");
+  csv << "set,sequence,target,mean_target,method,budget,keypoints_ref,keypoints_target,matches,correct,"
+         "repeatability\n";
+  std::vector<std::string> rows(pairs.size() * all.size());
+  std::map<std::string, cv::Mat> images;  // decoded once
+  for (const ev::ImagePair& p : pairs) {
+    for (const std::string& path : {p.reference, p.target}) {
+      if (!images.count(path)) {
+        images[path] = ev::readGray(path);
+      }
+    }
+  }
+  std::atomic<int> done{0};
+  const int n = static_cast<int>(pairs.size());
+  parallelFor(n, o.threads, [&](int w, int i) {
+    const ev::ImagePair& p = pairs[i];
+    const cv::Mat& ref = images.at(p.reference);
+    const cv::Mat& target = images.at(p.target);
+    const double tolerance = p.set == "webcam" ? 4.0 : 3.0;
+    for (size_t m = 0; m < all.size(); ++m) {
+      std::ostringstream row;
+      row << p.set << "," << p.sequence << "," << fs::path(p.target).filename().string() << "," << p.mean_target
+          << "," << all[m].label << "," << all[m].budget << ",";
+      if (ref.empty() || target.empty()) {
+        row << "0,0,0,0,0\n";
+      } else {
+        const ev::Features a = all[m].run(w, ref);
+        const ev::Features b = all[m].run(w, target);
+        const ev::MatchCounts c =
+            ev::matchAndCount(a.keypoints, a.descriptors, b.keypoints, b.descriptors, ev::identity(tolerance));
+        row << a.keypoints.size() << "," << b.keypoints.size() << "," << c.matches << "," << c.correct << ","
+            << ev::repeatability(a.keypoints, b.keypoints, tolerance) << "\n";
+      }
+      rows[static_cast<size_t>(i) * all.size() + m] = row.str();
+    }
+    if (w == 0) {
+      progress("lighting pairs", done, n);
+    }
+    ++done;
+  });
+  progress("lighting pairs", n, n);
+  for (const std::string& r : rows) {
+    csv << r;
+  }
+}
+
+void compareEuroc(const Options& o, const std::vector<Runner>& all) {
+  const ev::EurocSequence seq = ev::readEuroc(o.euroc);
+  std::vector<cv::Mat> frames;
+  for (const ev::FrameRef& f : seq.frames) {
+    frames.push_back(ev::readGray(f.path));
+  }
+  std::vector<ev::Degradation> degradations = ev::standardDegradations();
+  if (!o.degradations.empty()) {
+    degradations.clear();
+    for (const std::string& d : o.degradations) {
+      degradations.push_back({d});
+    }
+  }
+  const int n_frames = static_cast<int>(frames.size());
+  const int n_deg = static_cast<int>(degradations.size());
+  // Degraded frames, made once: frame i under degradation d has noise seed 1000 d + i.
+  std::vector<cv::Mat> degraded(static_cast<size_t>(n_frames) * n_deg);
+  parallelFor(n_frames * n_deg, o.threads, [&](int, int k) {
+    degraded[k] = degradations[k % n_deg].apply(frames[k / n_deg], 1000ULL * (k % n_deg) + k / n_deg);
+  });
+
+  // The second camera, for the stereo pose test: cam1 frames by timestamp.
+  const ev::EurocSequence right = ev::readEuroc(o.euroc, "cam1");
+  std::map<std::int64_t, cv::Mat> right_frames;
+  for (const ev::FrameRef& f : right.frames) {
+    right_frames[f.stamp] = ev::readGray(f.path);
+  }
+
+  // Jobs: cam0 frame `first` against cam0 frame first + step (step > 0), or against cam1 at the
+  // same time (step 0, the stereo pose test).
+  struct PairJob {
+    int first, step;
+    const cv::Mat* right = nullptr;
+    ev::RelativePose truth;
+    ev::GroundTruth correct;
+    bool is_static = false;
+  };
+  std::vector<PairJob> jobs;
+  if (seq.camera && seq.trajectory) {
+    const ev::Camera& cam0 = *seq.camera;
+    for (int step : o.steps) {
+      for (int i = 0; i + step < n_frames; i += o.pair_every) {
+        const auto p1 = seq.trajectory->at(seq.frames[i].stamp);
+        const auto p2 = seq.trajectory->at(seq.frames[i + step].stamp);
+        if (p1 && p2) {
+          PairJob job{i, step, nullptr, ev::groundTruthPose(cam0, *p1, cam0, *p2), {}, false};
+          job.is_static = ev::isStatic(job.truth);
+          job.correct = job.is_static ? ev::rotationOnly(cam0, cam0, job.truth) : ev::epipolar(cam0, *p1, *p2);
+          jobs.push_back(job);
+        }
+      }
+    }
+    if (right.camera) {
+      for (int i = 0; i < n_frames; i += o.pair_every) {
+        const auto pose = seq.trajectory->at(seq.frames[i].stamp);
+        const auto it = right_frames.find(seq.frames[i].stamp);
+        if (pose && it != right_frames.end() && !it->second.empty()) {
+          jobs.push_back({i, 0, &it->second, ev::groundTruthPose(cam0, *pose, *right.camera, *pose),
+                          ev::epipolar(cam0, *pose, *right.camera, *pose), false});
+        }
+      }
+    }
+  } else {
+    std::cerr << "enhanced_orb_compare: " << o.euroc << " has no calibration or ground truth: frame pairs skipped\n";
+  }
+
+  std::ofstream photometric(fs::path(o.output) / "euroc_photometric.csv");
+  photometric << "frame,degradation,method,budget,keypoints,matches,correct,repeatability,ms\n";
+  std::ofstream pair_csv(fs::path(o.output) / "euroc_pairs.csv");
+  pair_csv << "frame,pair,static,degradation,method,budget,matches,correct,inliers,rotation_deg,translation_deg\n";
+  for (size_t m = 0; m < all.size(); ++m) {
+    const Runner& method = all[m];
+    std::vector<ev::Features> features(degraded.size());
+    parallelFor(static_cast<int>(degraded.size()), o.threads,
+                [&](int w, int k) { features[k] = method.run(w, degraded[k]); });
+    progress("EuRoC " + method.label + " " + std::to_string(method.budget), static_cast<int>(m) + 1,
+             static_cast<int>(all.size()));
+    auto at = [&](int frame, int d) -> const ev::Features& { return features[static_cast<size_t>(frame) * n_deg + d]; };
+    const int none = static_cast<int>(std::find_if(degradations.begin(), degradations.end(),
+                                                   [](const ev::Degradation& d) { return d.name == "none"; }) -
+                                      degradations.begin());
+    for (int i = 0; i < n_frames && none < n_deg; i += o.every) {
+      for (int d = 0; d < n_deg; ++d) {
+        if (d == none) {
+          continue;
+        }
+        const ev::Features& a = at(i, none);
+        const ev::Features& b = at(i, d);
+        const ev::MatchCounts c =
+            ev::matchAndCount(a.keypoints, a.descriptors, b.keypoints, b.descriptors, ev::identity(3.0));
+        photometric << i << "," << degradations[d].name << "," << method.label << "," << method.budget << ","
+                    << b.keypoints.size() << "," << c.matches << "," << c.correct << ","
+                    << ev::repeatability(a.keypoints, b.keypoints) << "," << b.ms << "\n";
+      }
+    }
+    std::vector<std::string> rows(jobs.size() * n_deg);
+    parallelFor(static_cast<int>(rows.size()), o.threads, [&](int w, int k) {
+      const PairJob& job = jobs[k / n_deg];
+      const int d = k % n_deg;
+      const ev::Features& a = at(job.first, d);
+      const ev::Features b = job.right ? method.run(w, degradations[d].apply(*job.right, 7777ULL + 1000ULL * d + job.first))
+                                       : at(job.first + job.step, d);
+      const std::vector<cv::DMatch> matches = ev::mutualMatches(a.descriptors, b.descriptors);
+      std::vector<cv::Point2f> p1, p2;
+      int correct = 0;
+      for (const cv::DMatch& mt : matches) {
+        p1.push_back(a.keypoints[mt.queryIdx].pt);
+        p2.push_back(b.keypoints[mt.trainIdx].pt);
+        correct += job.correct(p1.back(), p2.back());
+      }
+      const ev::Camera& second = job.right ? *right.camera : *seq.camera;
+      // A pose from a static pair is not defined: only stereo pairs and moving pairs are scored.
+      const ev::PoseEstimate pose = job.is_static ? ev::PoseEstimate() : ev::estimatePose(*seq.camera, second, p1, p2);
+      const ev::PoseError error = ev::poseError(pose, job.truth);
+      std::ostringstream row;
+      row << job.first << "," << (job.right ? std::string("stereo") : "+" + std::to_string(job.step)) << ","
+          << job.is_static << "," << degradations[d].name << "," << method.label << ","
+          << method.budget << "," << matches.size() << "," << correct << "," << pose.inliers << ","
+          << error.rotation_deg << "," << error.translation_deg << "\n";
+      rows[k] = row.str();
+    });
+    for (const std::string& r : rows) {
+      pair_csv << r;
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> settings;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (i + 1 >= argc) {
+      std::cerr << "enhanced_orb_compare: " << arg << " needs a value\n";
+      return 2;
+    }
+    const std::string v = argv[++i];
+    bool ok = true;
+    if (arg == "--lighting") {
+      o.lighting = v;
+    } else if (arg == "--euroc") {
+      o.euroc = v;
+    } else if (arg == "--output") {
+      o.output = v;
+    } else if (arg == "--label") {
+      o.label = v;
+    } else if (arg == "--methods") {
+      o.methods = splitList(v);
+    } else if (arg == "--degradations") {
+      o.degradations = splitList(v);
+    } else if (arg == "--set") {
+      const size_t eq = v.find('=');
+      const std::string error =
+          eq == std::string::npos ? "expected NAME=VALUE" : enhanced_orb::setParam(o.params, v.substr(0, eq), v.substr(eq + 1));
+      if (!error.empty()) {
+        std::cerr << "enhanced_orb_compare: --set " << v << ": " << error << "\n";
+        return 2;
+      }
+    } else if (arg == "--budgets" || arg == "--steps") {
+      std::vector<int>& list = arg == "--budgets" ? o.budgets : o.steps;
+      list.clear();
+      for (const std::string& item : splitList(v)) {
+        int n = 0;
+        ok = ok && parsePositive(item, n);
+        list.push_back(n);
+      }
+      ok = ok && !list.empty();
+    } else if (arg == "--every" || arg == "--pair-every" || arg == "--threads") {
+      int& target = arg == "--every" ? o.every : arg == "--pair-every" ? o.pair_every : o.threads;
+      ok = parsePositive(v, target) && target > 0;
+    } else {
+      std::cerr << "enhanced_orb_compare: unknown option " << arg << "\n\n" << kUsage;
+      return 2;
+    }
+    if (!ok) {
+      std::cerr << "enhanced_orb_compare: invalid value for " << arg << ": '" << v << "'\n";
+      return 2;
+    }
+  }
+  if (o.lighting.empty() && o.euroc.empty()) {
+    std::cerr << "enhanced_orb_compare: give --lighting DIR, --euroc DIR or both\n\n" << kUsage;
+    return 2;
+  }
+  const std::vector<std::string> problems = enhanced_orb::validate(o.params);
+  if (!problems.empty()) {
+    std::cerr << "enhanced_orb_compare: " << enhanced_orb::joinMessages(problems) << "\n";
+    return 2;
+  }
+  try {
+    cv::setNumThreads(1);
+    const std::vector<Runner> all = runners(o);
+    fs::create_directories(o.output);
+    if (!o.lighting.empty()) {
+      compareLighting(o, all);
+    }
+    if (!o.euroc.empty()) {
+      compareEuroc(o, all);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "\nenhanced_orb_compare: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << "enhanced_orb_compare: wrote " << o.output << "\n";
+  return 0;
+}
