@@ -15,7 +15,35 @@ namespace enhanced_orb {
 
 class EnhanceNodelet : public ImageNodelet {
 private:
+  // ~preset (read at start) gives every parameter not set otherwise its value.
+  void seedPreset() {
+    ros::NodeHandle& pnh = getPrivateNodeHandle();
+    const std::string name = pnh.param<std::string>("preset", "default");
+    Preset preset = Preset::kDefault;
+    if (!parsePreset(name, preset)) {
+      NODELET_ERROR("preset '%s' is not default or paper; using default", name.c_str());
+    }
+    const EnhanceParams e = Params::preset(preset).enhance;
+    auto seed = [&pnh](const char* key, const auto& value) {
+      if (!pnh.hasParam(key)) {
+        pnh.setParam(key, value);
+      }
+    };
+    seed("tone_curve", std::string(toString(e.tone_curve)));
+    seed("tone_tiles", e.tone_tiles);
+    seed("alpha", e.alpha);
+    seed("tau", e.tau);
+    seed("beta", e.beta);
+    seed("sharpening", e.sharpening);
+    seed("blur_ksize", e.blur_ksize);
+    seed("blur_sigma", e.blur_sigma);
+    seed("std_threshold", e.std_threshold);
+    seed("gamma_mode", std::string(toString(e.gamma_mode)));
+    NODELET_INFO("preset %s", toString(preset));
+  }
+
   void advertiseOutputs() override {
+    seedPreset();
     pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("output_address");
     server_ = std::make_unique<dynamic_reconfigure::Server<EnhanceConfig>>(config_mutex_, getPrivateNodeHandle());
@@ -30,6 +58,7 @@ private:
       config.blur_ksize += 1;
     }
     EnhanceParams p;
+    p.tone_tiles = config.tone_tiles;
     p.alpha = config.alpha;
     p.tau = config.tau;
     p.beta = config.beta;
@@ -37,6 +66,11 @@ private:
     p.blur_ksize = config.blur_ksize;
     p.blur_sigma = config.blur_sigma;
     p.std_threshold = config.std_threshold;
+    if (!parseToneCurve(config.tone_curve, p.tone_curve)) {
+      NODELET_WARN("tone_curve '%s' is not equalize or gamma; keeping '%s'", config.tone_curve.c_str(),
+                   toString(params_.tone_curve));
+      p.tone_curve = params_.tone_curve;
+    }
     if (!parseGammaMode(config.gamma_mode, p.gamma_mode)) {
       NODELET_WARN("gamma_mode '%s' is not auto, always or never; keeping '%s'", config.gamma_mode.c_str(),
                    toString(params_.gamma_mode));

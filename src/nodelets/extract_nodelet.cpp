@@ -20,7 +20,34 @@ namespace enhanced_orb {
 
 class ExtractNodelet : public ImageNodelet {
 private:
+  // ~preset (read at start) gives every parameter not set otherwise its value.
+  void seedPreset() {
+    ros::NodeHandle& pnh = getPrivateNodeHandle();
+    const std::string name = pnh.param<std::string>("preset", "default");
+    Preset preset = Preset::kDefault;
+    if (!parsePreset(name, preset)) {
+      NODELET_ERROR("preset '%s' is not default or paper; using default", name.c_str());
+    }
+    const Params p = Params::preset(preset);
+    auto seed = [&pnh](const char* key, const auto& value) {
+      if (!pnh.hasParam(key)) {
+        pnh.setParam(key, value);
+      }
+    };
+    seed("threshold_mode", std::string(toString(p.orb.threshold_mode)));
+    seed("c_min", p.threshold.c_min);
+    seed("threshold_scale", p.threshold.threshold_scale);
+    seed("grid_size", p.threshold.grid_size);
+    seed("fast_threshold", p.orb.fast_threshold);
+    seed("max_features", p.orb.max_features);
+    seed("candidate_ratio", p.orb.candidate_ratio);
+    seed("n_levels", p.orb.n_levels);
+    seed("scale_factor", p.orb.scale_factor);
+    NODELET_INFO("preset %s", toString(preset));
+  }
+
   void advertiseOutputs() override {
+    seedPreset();
     ros::NodeHandle& nh = getNodeHandle();
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
     annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
@@ -42,6 +69,7 @@ private:
     p.threshold.grid_size = config.grid_size;
     p.orb.fast_threshold = config.fast_threshold;
     p.orb.max_features = config.max_features;
+    p.orb.candidate_ratio = config.candidate_ratio;
     p.orb.n_levels = config.n_levels;
     p.orb.scale_factor = config.scale_factor;
     if (!parseThresholdMode(config.threshold_mode, p.orb.threshold_mode)) {

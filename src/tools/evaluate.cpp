@@ -82,7 +82,7 @@ std::vector<Method> methods() {
   std::vector<Method> out;
   for (int budget : {0, 1000}) {
     for (const std::string name : {"baseline", "improved"}) {
-      Params p = name == "baseline" ? Params::baseline() : Params();
+      Params p = name == "baseline" ? Params::baseline() : Params::paper();
       p.orb.max_features = budget;
       auto extractor = std::make_shared<OrbExtractor>(p);
       out.push_back({name, budget, [extractor](const cv::Mat& gray) {

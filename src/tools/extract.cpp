@@ -1,8 +1,8 @@
 // enhanced_orb_extract: runs the extractor on image files and writes one YAML file per image.
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -30,17 +30,21 @@ poor_quality, inverted, enhance_ms and extract_ms.
 
 options:
   --output DIR           where to write (created if missing; required)
-  --baseline             the original ORB: no enhancement, fixed threshold (--fast-threshold)
+  --preset NAME          default (the default mode, 1000 features) or paper (Dai & Wu as
+                         published, every corner); parameters given after it override it
+  --baseline             the original ORB: the paper preset without enhancement, fixed threshold
   --no-enhance           skip the enhancement, keep the adaptive threshold
-  --max-features N       0 = every corner (default), > 0 = budget over all levels
-  --alpha X  --tau X  --beta X  --sharpening X     enhancement (paper defaults 0.2 0.3 0.3 1.0)
-  --gamma-mode auto|always|never                    quality test (default auto)
-  --grid-size N  --threshold-scale X  --c-min N     adaptive threshold (defaults 5 0.3 7)
-  --fast-threshold N     fixed threshold of the baseline (default 20)
-  --n-levels N  --scale-factor X                   pyramid (defaults 8 1.2)
   --save-enhanced        also write DIR/<stem>_enhanced.png
   --save-annotated       also write DIR/<stem>_annotated.png
   -h, --help             this text
+parameters (README "Parameters" gives each one's meaning, default and range):
+  --max-features N  --candidate-ratio X  --n-levels N  --scale-factor X
+  --tone-curve equalize|gamma  --tone-tiles N  --alpha X  --tau X  --beta X  --sharpening X
+  --blur-ksize N  --blur-sigma X  --gamma-mode auto|always|never  --std-threshold X
+  --grid-size N  --threshold-scale X  --c-min N  --threshold-mode adaptive|fixed  --fast-threshold N
+A value must be a whole number of the parameter's type and lie in its range; when an option is
+repeated, the last one wins.
+exit codes: 0 every image done, 1 an image could not be read or written, 2 bad arguments.
 )";
 
 struct Options {
@@ -53,52 +57,40 @@ struct Options {
   std::vector<std::string> images;
 };
 
-// Strict number parsing: the whole argument must be a number.
-template <typename T>
-bool parseNumber(const std::string& text, T& out) {
-  std::istringstream in(text);
-  T value{};
-  in >> value;
-  if (in.fail() || !in.eof()) {
-    return false;
-  }
-  out = value;
-  return true;
-}
-
 // Returns an error message, empty on success.
 std::string parseArguments(int argc, char** argv, Options& opt) {
+  // The preset first, wherever it stands: the other options adjust it.
+  enhanced_orb::Preset preset = enhanced_orb::Preset::kDefault;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::string(argv[i]) == "--preset" && !enhanced_orb::parsePreset(argv[i + 1], preset)) {
+      return std::string("invalid value for --preset: '") + argv[i + 1] + "' (default or paper)";
+    }
+  }
   Params& p = opt.params;
-  const std::map<std::string, std::function<bool(const std::string&)>> valued = {
-      {"--output", [&](const std::string& v) { return !(opt.output = v).empty(); }},
-      {"--max-features", [&](const std::string& v) { return parseNumber(v, p.orb.max_features); }},
-      {"--alpha", [&](const std::string& v) { return parseNumber(v, p.enhance.alpha); }},
-      {"--tau", [&](const std::string& v) { return parseNumber(v, p.enhance.tau); }},
-      {"--beta", [&](const std::string& v) { return parseNumber(v, p.enhance.beta); }},
-      {"--sharpening", [&](const std::string& v) { return parseNumber(v, p.enhance.sharpening); }},
-      {"--gamma-mode", [&](const std::string& v) { return enhanced_orb::parseGammaMode(v, p.enhance.gamma_mode); }},
-      {"--grid-size", [&](const std::string& v) { return parseNumber(v, p.threshold.grid_size); }},
-      {"--threshold-scale", [&](const std::string& v) { return parseNumber(v, p.threshold.threshold_scale); }},
-      {"--c-min", [&](const std::string& v) { return parseNumber(v, p.threshold.c_min); }},
-      {"--fast-threshold", [&](const std::string& v) { return parseNumber(v, p.orb.fast_threshold); }},
-      {"--n-levels", [&](const std::string& v) { return parseNumber(v, p.orb.n_levels); }},
-      {"--scale-factor", [&](const std::string& v) { return parseNumber(v, p.orb.scale_factor); }},
-  };
+  p = Params::preset(preset);
   const std::map<std::string, bool*> flags = {{"--baseline", &opt.baseline},
                                               {"--no-enhance", &opt.no_enhance},
                                               {"--save-enhanced", &opt.save_enhanced},
                                               {"--save-annotated", &opt.save_annotated}};
+  std::vector<std::pair<std::string, std::string>> settings;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (auto flag = flags.find(arg); flag != flags.end()) {
       *flag->second = true;
-    } else if (auto option = valued.find(arg); option != valued.end()) {
+    } else if (arg.rfind("--", 0) == 0) {
       if (i + 1 >= argc) {
         return arg + " needs a value";
       }
       const std::string value = argv[++i];
-      if (!option->second(value)) {
-        return "invalid value for " + arg + ": '" + value + "'";
+      if (arg == "--output") {
+        opt.output = value;
+      } else if (arg != "--preset") {
+        std::string name = arg.substr(2);
+        std::replace(name.begin(), name.end(), '-', '_');
+        if (name == "enhance") {
+          return "unknown option " + arg;
+        }
+        settings.emplace_back(name, value);
       }
     } else if (arg.size() > 1 && arg[0] == '-') {
       return "unknown option " + arg;
@@ -106,15 +98,20 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
       opt.images.push_back(arg);
     }
   }
+  if (opt.baseline) {
+    p = Params::baseline();
+  }
+  for (const auto& [name, value] : settings) {
+    const std::string error = enhanced_orb::setParam(p, name, value);
+    if (!error.empty()) {
+      return error.rfind("unknown parameter", 0) == 0 ? "unknown option --" + name : error;
+    }
+  }
   if (opt.output.empty()) {
     return "--output DIR is required";
   }
   if (opt.images.empty()) {
     return "no IMAGE given";
-  }
-  if (opt.baseline) {
-    p.enhance_enabled = false;
-    p.orb.threshold_mode = enhanced_orb::ThresholdMode::kFixed;
   }
   if (opt.no_enhance) {
     p.enhance_enabled = false;

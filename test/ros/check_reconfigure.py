@@ -53,7 +53,7 @@ class Reconfigure(unittest.TestCase):
         rospy.sleep(SETTLE_S)
 
     def test_raising_c_min_lowers_the_count_and_lifts_every_threshold(self):
-        self.apply("/cam0/extract", {"c_min": 7})
+        self.apply("/cam0/extract", {"c_min": 7, "max_features": 0})  # every corner: c_min sets the count
         low = self.keypoints.collect()
         self.apply("/cam0/extract", {"c_min": 40})
         high = self.keypoints.collect()

@@ -1,0 +1,182 @@
+#!/usr/bin/env python3
+"""Turns enhanced_orb_compare's CSV files into the equal-budget section of docs/RESULTS.md (between
+the compare:begin and compare:end markers) and its plots in docs/results/.
+
+    python3 scripts/compare_report.py RESULTS_DIR [docs/RESULTS.md]
+"""
+import collections
+import csv
+import os
+import sys
+
+GROUPS = ["<40", "40-80", "80-170", ">170", "webcam"]
+ORDER = ["default", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB"]
+RIVALS = ["baseline", "cv::ORB", "CLAHE+cv::ORB"]  # what the default mode must beat
+
+
+def group(row):
+    if row["set"] == "webcam":
+        return "webcam"
+    m = float(row["mean_target"])
+    return "<40" if m < 40 else "40-80" if m < 80 else "80-170" if m < 170 else ">170"
+
+
+def auc(errors, threshold):
+    """Area under the recall curve up to threshold, normalised (as ev::poseAuc)."""
+    errors = sorted(errors)
+    n = len(errors)
+    if n == 0:
+        return 0.0
+    area, previous, reached = 0.0, 0.0, 0
+    for i, e in enumerate(errors):
+        if e >= threshold:
+            break
+        area += (e - previous) * i / n
+        previous, reached = e, i + 1
+    area += (threshold - previous) * reached / n
+    return area / threshold
+
+
+def mean(values):
+    return sum(values) / len(values) if values else 0.0
+
+
+def table(header, rows):
+    out = ["| " + " | ".join(header) + " |", "| " + " | ".join(["---"] + ["---:"] * (len(header) - 1)) + " |"]
+    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def verdict(values):
+    """The default mode's value over the best rival's, marked when it loses."""
+    best = max(values.get(m, 0.0) for m in RIVALS)
+    ratio = values.get("default", 0.0) / best if best > 0 else float("inf")
+    return ("**%.2fx**" if ratio > 1.0 else "%.2fx (loses)") % ratio
+
+
+def main():
+    src = sys.argv[1]
+    doc = sys.argv[2] if len(sys.argv) > 2 else os.path.join(os.path.dirname(__file__), "..", "docs", "RESULTS.md")
+    out_dir = os.path.join(os.path.dirname(doc), "results")
+    lines = []
+
+    rows = list(csv.DictReader(open(os.path.join(src, "lighting.csv"))))
+    budgets = sorted({int(r["budget"]) for r in rows})
+    methods = [m for m in ORDER if m in {r["method"] for r in rows}]
+    correct = collections.defaultdict(list)
+    repeat = collections.defaultdict(list)
+    counts = collections.Counter()
+    for r in rows:
+        k = (int(r["budget"]), group(r), r["method"])
+        correct[k].append(int(r["correct"]))
+        repeat[k].append(float(r["repeatability"]))
+        if r["method"] == methods[0]:
+            counts[(int(r["budget"]), group(r))] += 1
+    lines.append("### Real lighting change: exposure brackets and webcams\n")
+    lines.append("Correct matches per image pair (mutual Hamming nearest neighbours within 3 px, 4 px on the "
+                 "webcams), pairs grouped by the target's mean gray; the last column is the default mode over "
+                 "the best of baseline, cv::ORB and CLAHE+cv::ORB.\n")
+    for b in budgets:
+        body = []
+        for g in GROUPS:
+            values = {m: mean(correct[(b, g, m)]) for m in methods}
+            body.append([g, counts[(b, g)]] + ["%.1f" % values[m] for m in methods] + [verdict(values)])
+        lines.append("**Budget %d**\n" % b)
+        lines.append(table(["target mean", "pairs"] + methods + ["default / best rival"], body) + "\n")
+    b = 1000 if 1000 in budgets else budgets[0]
+    body = [[g] + ["%.3f" % mean(repeat[(b, g, m)]) for m in methods] for g in GROUPS]
+    lines.append("Repeatability at %d (share of the smaller set's keypoints seen again):\n" % b)
+    lines.append(table(["target mean"] + methods, body) + "\n")
+    plot_groups(correct, b, methods, os.path.join(out_dir, "compare_lighting.png"))
+    lines.append("![Correct matches per pair by target brightness, budget %d](results/compare_lighting.png)\n" % b)
+
+    rows = list(csv.DictReader(open(os.path.join(src, "euroc_photometric.csv"))))
+    correct = collections.defaultdict(list)
+    for r in rows:
+        correct[(int(r["budget"]), r["degradation"], r["method"])].append(int(r["correct"]))
+    degradations = sorted({k[1] for k in correct}, key=lambda d: (d != "lowlight", d))
+    lines.append("### EuRoC frames against their degraded copies\n")
+    lines.append("Each sampled cam0 frame against itself under a degradation (identity ground truth, 3 px): "
+                 "`lowlight` = light x0.2 with shot and read noise (2 e-/DN, 3 e- read), `lowlight_gain` = the "
+                 "same amplified x4, `spotlight` / `gradient` = the same sensor under a light field falling to "
+                 "0.08, `dark`/`bright` = x0.4 / x1.6, `gamma_*`, `noise_10` = Gaussian noise of 10 DN.\n")
+    for b in budgets:
+        body = []
+        for d in degradations:
+            values = {m: mean(correct[(b, d, m)]) for m in methods}
+            body.append([d] + ["%.1f" % values[m] for m in methods] + [verdict(values)])
+        lines.append("**Budget %d**\n" % b)
+        lines.append(table(["degradation"] + methods + ["default / best rival"], body) + "\n")
+
+    rows = list(csv.DictReader(open(os.path.join(src, "euroc_pairs.csv"))))
+    correct = collections.defaultdict(list)
+    errors = collections.defaultdict(list)
+    static = collections.Counter()
+    for r in rows:
+        k = (int(r["budget"]), r["pair"], r["degradation"], r["method"])
+        correct[k].append(int(r["correct"]))
+        if r["static"] == "1":
+            static[(r["pair"], r["degradation"], r["method"])] += 1
+        else:
+            errors[k].append(max(float(r["rotation_deg"]), float(r["translation_deg"])))
+    pairs = sorted({k[1] for k in correct}, key=lambda p: (p == "stereo", len(p), p))
+    lines.append("### EuRoC frame pairs, both frames degraded alike\n")
+    lines.append("cam0 frames +1/+5/+10 apart and the cam0/cam1 stereo pair at one time. The excerpt's camera "
+                 "barely moves (under 2 cm over its 95 frames), so the temporal pairs are judged by the "
+                 "ground-truth rotation alone (x2 = K R K^-1 x1 within 3 px); their pose is not defined and is "
+                 "not scored. The stereo pair (11 cm baseline) is judged by the epipolar geometry (3 px) and "
+                 "gives the pose test: essential matrix by RANSAC from the matches, error = max(rotation, "
+                 "translation direction), AUC at 5/10/20 degrees.\n")
+    b = 1000 if 1000 in budgets else budgets[0]
+    for p in pairs:
+        body = []
+        for d in degradations + (["none"] if "none" not in degradations else []):
+            if not correct[(b, p, d, methods[0])]:
+                continue
+            values = {m: mean(correct[(b, p, d, m)]) for m in methods}
+            body.append([d] + ["%.1f" % values[m] for m in methods] + [verdict(values)])
+        lines.append("**Correct matches, pairs %s, budget %d**\n" % (p, b))
+        lines.append(table(["degradation"] + methods + ["default / best rival"], body) + "\n")
+    for b in budgets:
+        body = []
+        for d in sorted({k[2] for k in errors if k[1] == "stereo"}, key=lambda d: (d != "lowlight", d)):
+            cells = []
+            for m in methods:
+                e = errors[(b, "stereo", d, m)]
+                cells.append("%.2f / %.2f / %.2f" % (auc(e, 5), auc(e, 10), auc(e, 20)))
+            body.append([d] + cells)
+        lines.append("**Stereo pose AUC @5/10/20 degrees, budget %d**\n" % b)
+        lines.append(table(["degradation"] + methods, body) + "\n")
+
+    text = open(doc).read()
+    begin, end = "<!-- compare:begin -->", "<!-- compare:end -->"
+    section = begin + "\n" + "\n".join(lines) + "\n" + end
+    if begin in text:
+        text = text[: text.index(begin)] + section + text[text.index(end) + len(end):]
+    else:
+        text += "\n" + section + "\n"
+    open(doc, "w").write(text)
+    print("compare_report: wrote %s" % doc)
+
+
+def plot_groups(correct, budget, methods, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(8, 3.6))
+    width = 0.8 / len(methods)
+    for i, m in enumerate(methods):
+        xs = [g + (i - len(methods) / 2 + 0.5) * width for g in range(len(GROUPS))]
+        ax.bar(xs, [mean(correct[(budget, g, m)]) for g in GROUPS], width, label=m)
+    ax.set_xticks(range(len(GROUPS)))
+    ax.set_xticklabels(["mean < 40", "40-80", "80-170", "> 170", "webcams"])
+    ax.set_ylabel("correct matches per pair")
+    ax.set_title("Real lighting change, %d features" % budget)
+    ax.legend(fontsize=8, ncol=3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    main()
