@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) from the shared EuRoC frames:
-# the evaluation (Tables 2-4, Figures 6-7), the benchmarks and the nodelet chain's figures.
+# Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) from the shared data: the
+# equal-budget comparison (lighting pairs and EuRoC), the paper's evaluation (Tables 2-4,
+# Figures 6-7), the benchmarks and the nodelet chain's figures.
 #
-#   bash scripts/results.sh [EUROC_ASL_DIR]     default ../shared/data/euroc/V1_01_easy_micro
+#   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR]]
+#   defaults ../shared/data/euroc/V1_01_easy_micro and ../shared/data/lighting
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 EUROC=$(realpath "${1:-$ROOT/../shared/data/euroc/V1_01_easy_micro}")
+LIGHTING=$(realpath "${2:-$ROOT/../shared/data/lighting}")
 OUT="$ROOT/docs/results"
 bash "$ROOT/scripts/setup.sh"
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
@@ -15,6 +18,12 @@ source "$ROOT/devel/setup.bash"
 set -u
 mkdir -p "$OUT"
 start=$(date +%s)
+
+echo "results: equal budgets on $LIGHTING and $EUROC"
+COMPARE=$(mktemp -d)
+"$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --lighting "$LIGHTING" --euroc "$EUROC" --output "$COMPARE"
+python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
+rm -rf "$COMPARE"
 
 echo "results: evaluation on $EUROC"
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_evaluate" --euroc "$EUROC" --output "$OUT" --every 19
