@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
-"""Watches the enhanced ORB pipeline and its baseline while a bag plays: prints progress, then a
-summary table; writes the summary (Markdown and per-frame CSV) and a few annotated frames, the
-improved and the baseline side by side, to an output folder. Exits when the frames stop coming."""
+"""Watches the enhanced ORB pipeline (default mode), the paper preset and the baseline while a bag
+plays: prints progress, then a summary table; writes the summary (Markdown and per-frame CSV) and a
+few annotated frames, default | paper | baseline side by side, to an output folder. Exits when the
+frames stop coming.
+
+What the summary compares is what a visual odometry front end gets from each: matches to the
+previous frame (mutual Hamming nearest neighbours) that survive a RANSAC check (fundamental matrix,
+1 px), beside keypoints and milliseconds, overall and by the frame's light."""
 import argparse
 import csv
 import os
@@ -18,26 +23,45 @@ from sensor_msgs.msg import Image
 
 from enhanced_orb.msg import KeypointArray
 
+METHODS = ("default", "paper", "baseline")
+TOPICS = {"default": "", "paper": "paper/", "baseline": "baseline/"}
+LABELS = {"default": "default mode", "paper": "paper preset", "baseline": "original ORB"}
+
+
+def ransac_matches(previous, current):
+    """Matches of `current` to `previous` that survive RANSAC on the fundamental matrix."""
+    if previous is None or len(previous[0]) < 8 or len(current[0]) < 8:
+        return 0
+    matcher = cv2.BFMatcher(cv2.NORM_HAMMING, crossCheck=True)
+    matches = matcher.match(previous[1], current[1])
+    if len(matches) < 8:
+        return 0
+    p1 = np.float32([previous[0][m.queryIdx] for m in matches])
+    p2 = np.float32([current[0][m.trainIdx] for m in matches])
+    _, mask = cv2.findFundamentalMat(p1, p2, cv2.FM_RANSAC, 1.0, 0.999)
+    return int(mask.sum()) if mask is not None else 0
+
 
 class Monitor:
     def __init__(self, args):
         self.args = args
         self.lock = threading.Lock()
         self.bridge = CvBridge()
-        self.rows = {}  # stamp -> {"improved": (n, ms), "baseline": (n, ms)}
-        self.annotated = {"improved": {}, "baseline": {}}  # stamp -> image, for the frames to save
-        self.enhance_ms = []  # (frames, mean ms) per diagnostics window
+        self.rows = {}  # stamp -> {method: (keypoints, extract ms, RANSAC matches to the previous frame)}
+        self.previous = {m: None for m in METHODS}  # (points, descriptors) of the last frame
+        self.light = {}  # stamp -> mean gray of the raw frame
+        self.annotated = {m: {} for m in METHODS}  # stamp -> image, for the frames to save
+        self.enhance_ms = {"default": [], "paper": []}  # (frames, mean ms) per diagnostics window
         self.first_stamp = None
         self.last_message = None
         self.saved = []
-        self.shown = -1  # frames done at the last progress line
+        self.shown = -1
         cam = args.camera
-        rospy.Subscriber(f"/{cam}/keypoints", KeypointArray, self.on_keypoints, "improved", queue_size=50)
-        rospy.Subscriber(f"/{cam}/baseline/keypoints", KeypointArray, self.on_keypoints, "baseline", queue_size=50)
-        rospy.Subscriber(f"/{cam}/image_annotated", Image, self.on_annotated, "improved", queue_size=5,
-                         buff_size=2 ** 24)
-        rospy.Subscriber(f"/{cam}/baseline/image_annotated", Image, self.on_annotated, "baseline", queue_size=5,
-                         buff_size=2 ** 24)
+        for m in METHODS:
+            rospy.Subscriber(f"/{cam}/{TOPICS[m]}keypoints", KeypointArray, self.on_keypoints, m, queue_size=50)
+            rospy.Subscriber(f"/{cam}/{TOPICS[m]}image_annotated", Image, self.on_annotated, m, queue_size=5,
+                             buff_size=2 ** 24)
+        rospy.Subscriber(f"/{cam}/image_raw", Image, self.on_raw, queue_size=50, buff_size=2 ** 24)
         rospy.Subscriber("/diagnostics", DiagnosticArray, self.on_diagnostics, queue_size=10)
 
     def index(self, stamp):
@@ -45,10 +69,22 @@ class Monitor:
             self.first_stamp = stamp
         return int(round((stamp - self.first_stamp).to_sec() * self.args.fps))
 
+    def on_raw(self, msg):
+        mean = float(np.frombuffer(msg.data, np.uint8).mean()) if msg.encoding == "mono8" else float("nan")
+        with self.lock:
+            self.light[msg.header.stamp] = mean
+
     def on_keypoints(self, msg, which):
+        points = np.float32([[k.x, k.y] for k in msg.keypoints]).reshape(-1, 2)
+        descriptors = np.frombuffer(bytes(msg.descriptors), np.uint8).reshape(-1, max(1, msg.descriptor_bytes))
+        current = (points, descriptors)
+        with self.lock:
+            previous = self.previous[which]
+            self.previous[which] = current
+        survived = ransac_matches(previous, current)
         with self.lock:
             self.index(msg.header.stamp)
-            self.rows.setdefault(msg.header.stamp, {})[which] = (len(msg.keypoints), msg.extract_ms)
+            self.rows.setdefault(msg.header.stamp, {})[which] = (len(msg.keypoints), msg.extract_ms, survived)
             self.last_message = time.monotonic()
 
     def on_annotated(self, msg, which):
@@ -56,36 +92,39 @@ class Monitor:
             if self.index(msg.header.stamp) not in self.args.save:
                 return
             self.annotated[which][msg.header.stamp] = self.bridge.imgmsg_to_cv2(msg, "bgr8")
-            self.save_pairs()
+            self.save_frames()
 
     def on_diagnostics(self, msg):
         for status in msg.status:
             # diagnostic_updater names a status "<node name without the leading slash>: <task>".
-            if status.name.endswith(f"{self.args.camera}/enhance: processing"):
-                values = {kv.key: kv.value for kv in status.values}
-                frames = float(values.get("frames per second", 0))
-                if frames > 0:
-                    with self.lock:
-                        self.enhance_ms.append((frames, float(values["mean processing time [ms]"])))
+            for method, node in (("default", "enhance"), ("paper", "paper_enhance")):
+                if status.name.endswith(f"{self.args.camera}/{node}: processing"):
+                    values = {kv.key: kv.value for kv in status.values}
+                    frames = float(values.get("frames per second", 0))
+                    if frames > 0:
+                        with self.lock:
+                            self.enhance_ms[method].append((frames, float(values["mean processing time [ms]"])))
 
-    def save_pairs(self):
-        for stamp in set(self.annotated["improved"]) & set(self.annotated["baseline"]):
-            improved = self.annotated["improved"].pop(stamp)
-            baseline = self.annotated["baseline"].pop(stamp)
-            index = self.index(stamp)
-            pair = np.hstack([improved, np.zeros((improved.shape[0], 8, 3), np.uint8), baseline])
-            for text, x in (("enhanced ORB", 10), ("original ORB", improved.shape[1] + 18)):
-                cv2.putText(pair, text, (x, improved.shape[0] - 12), cv2.FONT_HERSHEY_SIMPLEX, 0.7, (0, 0, 0), 4,
-                            cv2.LINE_AA)
-                cv2.putText(pair, text, (x, improved.shape[0] - 12), cv2.FONT_HERSHEY_SIMPLEX, 0.7, (255, 255, 255),
-                            1, cv2.LINE_AA)
-            path = os.path.join(self.args.output, f"frame_{index:04d}.png")
-            cv2.imwrite(path, pair)
+    def save_frames(self):
+        for stamp in set.intersection(*(set(self.annotated[m]) for m in METHODS)):
+            images = [self.annotated[m].pop(stamp) for m in METHODS]
+            gap = np.zeros((images[0].shape[0], 8, 3), np.uint8)
+            row = np.hstack([images[0], gap, images[1], gap, images[2]])
+            for k, m in enumerate(METHODS):
+                x = 10 + k * (images[0].shape[1] + 8)
+                for colour, thickness in (((0, 0, 0), 4), ((255, 255, 255), 1)):
+                    cv2.putText(row, LABELS[m], (x, images[0].shape[0] - 12), cv2.FONT_HERSHEY_SIMPLEX, 0.7, colour,
+                                thickness, cv2.LINE_AA)
+            path = os.path.join(self.args.output, f"frame_{self.index(stamp):04d}.png")
+            cv2.imwrite(path, row)
             self.saved.append(path)
+
+    def complete(self):
+        return sorted((s, r) for s, r in self.rows.items() if len(r) == len(METHODS))
 
     def progress(self):
         with self.lock:
-            done = [r for r in self.rows.values() if len(r) == 2]
+            done = self.complete()
         if len(done) == self.shown:
             return
         tty = sys.stdout.isatty()
@@ -95,48 +134,55 @@ class Monitor:
         total = self.args.frames
         width = 30
         filled = int(width * min(len(done), total) / total) if total else 0
-        last = done[-1] if done else None
         text = f"\r[{'#' * filled}{'.' * (width - filled)}] {len(done):4d}/{total} frames"
-        if last:
-            text += f"  keypoints: enhanced {last['improved'][0]:6d}  original {last['baseline'][0]:6d}"
+        if done:
+            last = done[-1][1]
+            text += "  RANSAC matches: " + "  ".join(f"{m} {last[m][2]:4d}" for m in METHODS)
         sys.stdout.write(text if tty else text[1:] + "\n")
         sys.stdout.flush()
 
     def summary(self):
         with self.lock:
-            rows = sorted((s, r) for s, r in self.rows.items() if len(r) == 2)
-            enhance = list(self.enhance_ms)
+            rows = self.complete()
+            light = dict(self.light)
+            enhance = {m: list(v) for m, v in self.enhance_ms.items()}
         n = len(rows)
 
         def mean(values):
             return sum(values) / len(values) if values else float("nan")
 
-        imp_kp = mean([r["improved"][0] for _, r in rows])
-        base_kp = mean([r["baseline"][0] for _, r in rows])
-        imp_ms = mean([r["improved"][1] for _, r in rows])
-        base_ms = mean([r["baseline"][1] for _, r in rows])
-        frames = sum(f for f, _ in enhance)
-        enh_ms = sum(f * m for f, m in enhance) / frames if frames else float("nan")
-        table = [
-            "| | original ORB (baseline) | enhanced ORB |",
-            "| --- | ---: | ---: |",
-            f"| frames | {n} | {n} |",
-            f"| mean keypoints per frame | {base_kp:.0f} | {imp_kp:.0f} ({imp_kp / base_kp:.2f}x) |"
-            if base_kp else f"| mean keypoints per frame | {base_kp:.0f} | {imp_kp:.0f} |",
-            f"| mean enhancement ms per frame | - | {enh_ms:.2f} |",
-            f"| mean extraction ms per frame | {base_ms:.2f} | {imp_ms:.2f} |",
-            f"| mean total ms per frame | {base_ms:.2f} | {enh_ms + imp_ms:.2f} |",
-        ]
+        def enhance_mean(method):
+            frames = sum(f for f, _ in enhance.get(method, []))
+            return sum(f * m for f, m in enhance.get(method, [])) / frames if frames else 0.0
+
+        # The darkest quarter of the frames, by the mean gray of what the camera recorded.
+        grays = sorted(light.get(s, 255.0) for s, _ in rows)
+        cut = grays[len(grays) // 4] if grays else 0.0
+        dark = [(s, r) for s, r in rows if light.get(s, 255.0) <= cut]
+        header = "| | " + " | ".join(LABELS[m] for m in METHODS) + " |"
+        table = [header, "| --- |" + " ---: |" * len(METHODS), f"| frames | {n} | {n} | {n} |"]
+
+        def line(name, rows_, key, fmt):
+            cells = [fmt % mean([key(r[m]) for _, r in rows_]) for m in METHODS]
+            table.append(f"| {name} | " + " | ".join(cells) + " |")
+
+        line("RANSAC matches to the previous frame", rows, lambda v: v[2], "%.0f")
+        line(f"... in the darkest {len(dark)} frames (mean gray <= {cut:.0f})", dark, lambda v: v[2], "%.0f")
+        line("keypoints per frame", rows, lambda v: v[0], "%.0f")
+        enh = {m: enhance_mean(m) for m in METHODS}
+        table.append("| enhancement ms per frame | " + " | ".join(
+            "%.2f" % enh[m] if m != "baseline" else "-" for m in METHODS) + " |")
+        line("extraction ms per frame", rows, lambda v: v[1], "%.2f")
         with open(os.path.join(self.args.output, "frames.csv"), "w", newline="") as f:
             writer = csv.writer(f)
-            writer.writerow(["stamp", "frame", "baseline_keypoints", "improved_keypoints", "baseline_extract_ms",
-                             "improved_extract_ms"])
+            writer.writerow(["stamp", "frame", "mean_gray"] + [f"{m}_{k}" for m in METHODS
+                                                              for k in ("keypoints", "extract_ms", "ransac_matches")])
             for stamp, r in rows:
-                writer.writerow([f"{stamp.to_sec():.6f}", self.index(stamp), r["baseline"][0], r["improved"][0],
-                                 f"{r['baseline'][1]:.3f}", f"{r['improved'][1]:.3f}"])
+                writer.writerow([f"{stamp.to_sec():.6f}", self.index(stamp), "%.1f" % light.get(stamp, float("nan"))]
+                                + [f"{x:.3f}" if isinstance(x, float) else x for m in METHODS for x in r[m]])
         with open(os.path.join(self.args.output, "summary.md"), "w") as f:
             f.write(f"# enhanced_orb demo: {self.args.bag}\n\n" + "\n".join(table) + "\n\n")
-            f.write("Annotated frames (enhanced left, original right):\n\n")
+            f.write("Annotated frames (default mode | paper preset | original ORB):\n\n")
             for path in sorted(self.saved):
                 f.write(f"![{os.path.basename(path)}]({os.path.basename(path)})\n")
         print("\n\n" + "\n".join(table))
@@ -145,7 +191,7 @@ class Monitor:
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__)
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--output", required=True)
     parser.add_argument("--frames", type=int, default=0, help="frames in the bag, for the progress bar")
     parser.add_argument("--fps", type=float, default=20.0, help="frame rate of the bag, to number frames")

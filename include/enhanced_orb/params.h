@@ -43,7 +43,7 @@ enum class ThresholdMode {
 // Section III-A: image enhancement.
 struct EnhanceParams {
   ToneCurve tone_curve = ToneCurve::kEqualize;
-  double alpha = 0.5;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
+  double alpha = 0.3;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
   double tau = 0.3;             // eq 15 (gamma: lower truncation of gamma_i; equalize: least slope), [0, 1]
   double beta = 1.0;            // eq 20: weight of the brightness mask T_mask, [0, 2]
   double sharpening = -1.0;     // eq 19: unsharp-mask degree, [-1, 5]; -1 leaves the filtered image f
@@ -99,6 +99,10 @@ std::vector<std::string> validate(const Params& p);
 // unknown or the text is not a whole value of the parameter's type; empty on success. Ranges are
 // checked by validate().
 std::string setParam(Params& params, const std::string& name, const std::string& value);
+
+// The parameters that have no effect under `params`, each with the reason ("std_threshold: only
+// used when gamma_mode is auto"), so that a tool or nodelet can say so when one of them is set.
+std::vector<std::string> inactiveParameters(const Params& params);
 
 // Joins validation messages into one line, for logs and exceptions.
 std::string joinMessages(const std::vector<std::string>& messages);

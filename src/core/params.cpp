@@ -167,6 +167,40 @@ std::string setParam(Params& p, const std::string& name, const std::string& valu
   return ok ? std::string() : "invalid value for " + name + ": '" + value + "'";
 }
 
+std::vector<std::string> inactiveParameters(const Params& p) {
+  std::vector<std::string> out;
+  const EnhanceParams& e = p.enhance;
+  if (!p.enhance_enabled) {
+    for (const char* name : {"tone_curve", "tone_tiles", "alpha", "tau", "beta", "sharpening", "blur_ksize",
+                             "blur_sigma", "std_threshold", "gamma_mode"}) {
+      out.push_back(std::string(name) + ": the enhancement is off");
+    }
+  } else {
+    if (e.gamma_mode != GammaMode::kAuto) {
+      out.push_back("std_threshold: only used when gamma_mode is auto");
+    }
+    if (e.tone_curve == ToneCurve::kGamma) {
+      out.push_back("tone_tiles: only used when tone_curve is equalize");
+    }
+    if (e.gamma_mode == GammaMode::kNever) {
+      for (const char* name : {"tone_curve", "tone_tiles", "alpha", "tau", "beta"}) {
+        out.push_back(std::string(name) + ": the tone curve is off (gamma_mode never)");
+      }
+    }
+  }
+  if (p.orb.threshold_mode == ThresholdMode::kFixed) {
+    for (const char* name : {"c_min", "threshold_scale"}) {
+      out.push_back(std::string(name) + ": only used when threshold_mode is adaptive");
+    }
+  } else {
+    out.push_back("fast_threshold: only used when threshold_mode is fixed");
+  }
+  if (p.orb.max_features == 0) {
+    out.push_back("candidate_ratio: only used with a budget (max_features > 0)");
+  }
+  return out;
+}
+
 std::string joinMessages(const std::vector<std::string>& messages) {
   std::string joined;
   for (const std::string& m : messages) {

@@ -62,6 +62,9 @@ cv::Mat Degradation::apply(const cv::Mat& gray, std::uint64_t seed) const {
   } else if (name == "lowlight_gain") {
     sensor.gain = 4.0;
     return lowLight(gray, cv::Mat(), 0.2, sensor, seed);
+  } else if (name == "night") {
+    sensor.gain = 4.0;
+    return lowLight(gray, cv::Mat(), 0.08, sensor, seed);
   } else if (name == "spotlight") {
     return lowLight(gray, spotlightField(gray.size()), 1.0, sensor, seed);
   } else if (name == "gradient") {
@@ -89,8 +92,8 @@ cv::Mat Degradation::apply(const cv::Mat& gray, std::uint64_t seed) const {
 }
 
 std::vector<Degradation> standardDegradations() {
-  return {{"none"}, {"lowlight"}, {"lowlight_gain"}, {"spotlight"}, {"gradient"},
-          {"dark"}, {"bright"},   {"gamma_0.5"},     {"gamma_2"},   {"noise_10"}};
+  return {{"none"},      {"lowlight"}, {"lowlight_gain"}, {"night"},   {"spotlight"}, {"gradient"},
+          {"dark"},      {"bright"},   {"gamma_0.5"},     {"gamma_2"}, {"noise_10"}};
 }
 
 }  // namespace evaluation

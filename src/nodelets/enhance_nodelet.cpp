@@ -81,6 +81,17 @@ private:
       NODELET_WARN("parameters rejected, keeping the previous ones: %s", joinMessages(problems).c_str());
       return;
     }
+    Params all;
+    all.enhance = p;
+    all.enhance_enabled = config.enabled;
+    warnInactive(all, {{"tone_curve", config.tone_curve},
+                       {"tone_tiles", std::to_string(config.tone_tiles)},
+                       {"alpha", std::to_string(config.alpha)},
+                       {"tau", std::to_string(config.tau)},
+                       {"beta", std::to_string(config.beta)},
+                       {"sharpening", std::to_string(config.sharpening)},
+                       {"std_threshold", std::to_string(config.std_threshold)},
+                       {"gamma_mode", config.gamma_mode}});
     std::lock_guard<std::mutex> lock(params_mutex_);
     params_ = p;
     enabled_ = config.enabled;

@@ -84,6 +84,10 @@ private:
       NODELET_WARN("parameters rejected, keeping the previous ones: %s", e.what());
       return;
     }
+    warnInactive(p, {{"c_min", std::to_string(config.c_min)},
+                     {"threshold_scale", std::to_string(config.threshold_scale)},
+                     {"fast_threshold", std::to_string(config.fast_threshold)},
+                     {"candidate_ratio", std::to_string(config.candidate_ratio)}});
     std::lock_guard<std::mutex> lock(params_mutex_);
     extractor_ = extractor;
     draw_ = DrawOptions{config.draw_keypoints, config.draw_grid, config.draw_text};

@@ -138,4 +138,21 @@ void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   total_ms_ = max_ms_ = 0.0;
 }
 
+void ImageNodelet::warnInactive(const Params& params, const std::map<std::string, std::string>& values) {
+  const bool first = last_values_.empty();
+  for (const std::string& inactive : inactiveParameters(params)) {
+    const std::string name = inactive.substr(0, inactive.find(':'));
+    const auto value = values.find(name);
+    if (value == values.end()) {
+      continue;
+    }
+    const auto last = last_values_.find(name);
+    if (!first && (last == last_values_.end() || last->second != value->second)) {
+      NODELET_WARN("%s = %s has no effect now (%s)", name.c_str(), value->second.c_str(),
+                   inactive.substr(inactive.find(':') + 2).c_str());
+    }
+  }
+  last_values_ = values;
+}
+
 }  // namespace enhanced_orb

@@ -15,6 +15,8 @@
 #include <sensor_msgs/Image.h>
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/params.h"
+
 namespace enhanced_orb {
 
 class ImageNodelet : public nodelet::Nodelet {
@@ -41,6 +43,10 @@ protected:
   void publishAddress(ros::Publisher& pub, const sensor_msgs::Image& image);
   ros::Publisher advertiseAddress(const std::string& topic);
 
+  // After a reconfiguration to `params`: warns about each parameter in `values` (name -> value as
+  // text) that changed since the last call and has no effect under `params`, naming the reason.
+  void warnInactive(const Params& params, const std::map<std::string, std::string>& values);
+
   image_transport::ImageTransport& transport() { return *it_; }
   // ~queue_size: of the input subscription and of every output, so that a subscriber in another
   // process that reads in bursts loses nothing the nodelet could keep.
@@ -57,6 +63,8 @@ private:
   std::mutex connect_mutex_;
   int queue_size_ = 5;
   bool debug_addresses_ = false;
+
+  std::map<std::string, std::string> last_values_;
 
   std::mutex log_mutex_;
   std::map<std::string, ros::WallTime> last_warning_;

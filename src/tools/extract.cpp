@@ -116,6 +116,14 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
   if (opt.no_enhance) {
     p.enhance_enabled = false;
   }
+  for (const std::string& inactive : enhanced_orb::inactiveParameters(p)) {
+    for (const auto& setting : settings) {
+      if (inactive.rfind(setting.first + ":", 0) == 0) {
+        std::cerr << "enhanced_orb_extract: warning: --" << setting.first << " has no effect here (" << inactive
+                  << ")\n";
+      }
+    }
+  }
   const std::vector<std::string> problems = enhanced_orb::validate(p);
   return problems.empty() ? "" : enhanced_orb::joinMessages(problems);
 }

@@ -164,3 +164,30 @@ TEST(Params, NamesRoundTrip) {
   EXPECT_FALSE(parsePreset("fast", unchanged));
   EXPECT_EQ(unchanged, Preset::kPaper);
 }
+
+TEST(Params, InactiveParametersAreNamedWithTheirReason) {
+  auto has = [](const std::vector<std::string>& list, const std::string& name) {
+    for (const std::string& s : list) {
+      if (s.rfind(name + ":", 0) == 0) {
+        return true;
+      }
+    }
+    return false;
+  };
+  const std::vector<std::string> def = inactiveParameters(Params());
+  EXPECT_TRUE(has(def, "std_threshold"));  // gamma_mode always
+  EXPECT_TRUE(has(def, "fast_threshold"));
+  EXPECT_FALSE(has(def, "alpha"));
+  EXPECT_FALSE(has(def, "tau"));
+  EXPECT_FALSE(has(def, "beta"));
+  EXPECT_FALSE(has(def, "c_min"));
+  EXPECT_FALSE(has(def, "candidate_ratio"));
+  const std::vector<std::string> paper = inactiveParameters(Params::paper());
+  EXPECT_FALSE(has(paper, "std_threshold"));
+  EXPECT_TRUE(has(paper, "tone_tiles"));
+  EXPECT_TRUE(has(paper, "candidate_ratio"));  // every corner
+  const std::vector<std::string> base = inactiveParameters(Params::baseline());
+  EXPECT_TRUE(has(base, "c_min"));
+  EXPECT_TRUE(has(base, "alpha"));
+  EXPECT_FALSE(has(base, "fast_threshold"));
+}

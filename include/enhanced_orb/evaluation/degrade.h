@@ -35,7 +35,8 @@ struct Degradation {
   cv::Mat apply(const cv::Mat& gray, std::uint64_t seed) const;
 };
 
-// The EuRoC tests: none, lowlight (x0.2, noisy), lowlight_gain (x0.2 then gain x4), spotlight,
+// The EuRoC tests: none, lowlight (x0.2, noisy), lowlight_gain (x0.2 then gain x4), night (x0.08
+// then gain x4), spotlight,
 // gradient, dark (brightness -60 %), bright (+60 %), gamma_0.5, gamma_2, noise_10.
 std::vector<Degradation> standardDegradations();
 
