@@ -1,4 +1,6 @@
 // enhanced_orb/EnhanceNodelet: image -> image_enhanced (mono8, same header), section III-A.
+#include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 
@@ -43,21 +45,31 @@ private:
   }
 
   void advertiseOutputs() override {
+    warnWrongTypes({{"enabled", ParamType::kBool},       {"tone_curve", ParamType::kString},
+                    {"tone_tiles", ParamType::kInt},     {"alpha", ParamType::kDouble},
+                    {"tau", ParamType::kDouble},         {"beta", ParamType::kDouble},
+                    {"sharpening", ParamType::kDouble},  {"blur_ksize", ParamType::kInt},
+                    {"blur_sigma", ParamType::kDouble},  {"std_threshold", ParamType::kDouble},
+                    {"gamma_mode", ParamType::kString}});
     seedPreset();
     pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("output_address");
     server_ = std::make_unique<dynamic_reconfigure::Server<EnhanceConfig>>(config_mutex_, getPrivateNodeHandle());
-    server_->setCallback([this](EnhanceConfig& config, uint32_t) { reconfigure(config); });
+    server_->setCallback([this](EnhanceConfig& config, uint32_t) {
+      try {
+        reconfigure(config);
+      } catch (const std::exception& e) {
+        NODELET_ERROR("reconfiguration failed, keeping the previous parameters: %s", e.what());
+        config = valid_;
+      }
+    });
   }
 
   bool outputsHaveSubscribers() const override { return pub_.getNumSubscribers() > 0; }
 
-  void reconfigure(EnhanceConfig& config) {
-    if (config.blur_ksize % 2 == 0) {
-      NODELET_WARN("blur_ksize = %d must be odd; using %d", config.blur_ksize, config.blur_ksize + 1);
-      config.blur_ksize += 1;
-    }
+  static EnhanceParams toParams(const EnhanceConfig& config) {
     EnhanceParams p;
+    parseToneCurve(config.tone_curve, p.tone_curve);
     p.tone_tiles = config.tone_tiles;
     p.alpha = config.alpha;
     p.tau = config.tau;
@@ -66,19 +78,48 @@ private:
     p.blur_ksize = config.blur_ksize;
     p.blur_sigma = config.blur_sigma;
     p.std_threshold = config.std_threshold;
-    if (!parseToneCurve(config.tone_curve, p.tone_curve)) {
+    parseGammaMode(config.gamma_mode, p.gamma_mode);
+    return p;
+  }
+
+  // A refused value is set back to the last valid one in `config`, which the server then reports:
+  // what dynamic_reconfigure shows is what runs, and one bad value never blocks the others.
+  void reconfigure(EnhanceConfig& config) {
+    if (config.blur_ksize % 2 == 0) {
+      NODELET_WARN("blur_ksize = %d must be odd; using %d", config.blur_ksize, config.blur_ksize + 1);
+      config.blur_ksize += 1;
+    }
+    ToneCurve curve;
+    if (!parseToneCurve(config.tone_curve, curve)) {
       NODELET_WARN("tone_curve '%s' is not equalize or gamma; keeping '%s'", config.tone_curve.c_str(),
-                   toString(params_.tone_curve));
-      p.tone_curve = params_.tone_curve;
+                   valid_.tone_curve.c_str());
+      config.tone_curve = valid_.tone_curve;
     }
-    if (!parseGammaMode(config.gamma_mode, p.gamma_mode)) {
+    GammaMode mode;
+    if (!parseGammaMode(config.gamma_mode, mode)) {
       NODELET_WARN("gamma_mode '%s' is not auto, always or never; keeping '%s'", config.gamma_mode.c_str(),
-                   toString(params_.gamma_mode));
-      p.gamma_mode = params_.gamma_mode;
+                   valid_.gamma_mode.c_str());
+      config.gamma_mode = valid_.gamma_mode;
     }
-    const std::vector<std::string> problems = validate(p);
-    if (!problems.empty()) {
-      NODELET_WARN("parameters rejected, keeping the previous ones: %s", joinMessages(problems).c_str());
+    const std::map<std::string, std::function<std::string()>> restore = {
+        {"tone_tiles", [&] { return std::to_string(config.tone_tiles = valid_.tone_tiles); }},
+        {"alpha", [&] { return std::to_string(config.alpha = valid_.alpha); }},
+        {"tau", [&] { return std::to_string(config.tau = valid_.tau); }},
+        {"beta", [&] { return std::to_string(config.beta = valid_.beta); }},
+        {"sharpening", [&] { return std::to_string(config.sharpening = valid_.sharpening); }},
+        {"blur_ksize", [&] { return std::to_string(config.blur_ksize = valid_.blur_ksize); }},
+        {"blur_sigma", [&] { return std::to_string(config.blur_sigma = valid_.blur_sigma); }},
+        {"std_threshold", [&] { return std::to_string(config.std_threshold = valid_.std_threshold); }},
+    };
+    for (const std::string& problem : validate(toParams(config))) {
+      const auto it = restore.find(problem.substr(0, problem.find(' ')));
+      const std::string kept = it != restore.end() ? it->second() : "the previous value";
+      NODELET_WARN("%s; keeping %s", problem.c_str(), kept.c_str());
+    }
+    const EnhanceParams p = toParams(config);
+    if (!validate(p).empty()) {  // only if the restored values are invalid together
+      NODELET_ERROR("parameters rejected, keeping the previous ones: %s", joinMessages(validate(p)).c_str());
+      config = valid_;
       return;
     }
     Params all;
@@ -92,6 +133,7 @@ private:
                        {"sharpening", std::to_string(config.sharpening)},
                        {"std_threshold", std::to_string(config.std_threshold)},
                        {"gamma_mode", config.gamma_mode}});
+    valid_ = config;
     std::lock_guard<std::mutex> lock(params_mutex_);
     params_ = p;
     enabled_ = config.enabled;
@@ -133,7 +175,8 @@ private:
   boost::recursive_mutex config_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<EnhanceConfig>> server_;
   std::mutex params_mutex_;
-  EnhanceParams params_;
+  EnhanceConfig valid_ = EnhanceConfig::__getDefault__();  // the last configuration applied
+  EnhanceParams params_ = toParams(valid_);
   bool enabled_ = true;
 };
 

@@ -1,6 +1,8 @@
 // enhanced_orb/ExtractNodelet: image -> keypoints (KeypointArray) and image_annotated (bgr8),
 // ORB with the truncated adaptive threshold (section III-B) or the original fixed threshold.
+#include <functional>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -47,23 +49,35 @@ private:
   }
 
   void advertiseOutputs() override {
+    warnWrongTypes({{"threshold_mode", ParamType::kString}, {"c_min", ParamType::kInt},
+                    {"threshold_scale", ParamType::kDouble}, {"grid_size", ParamType::kInt},
+                    {"fast_threshold", ParamType::kInt},     {"max_features", ParamType::kInt},
+                    {"candidate_ratio", ParamType::kDouble}, {"n_levels", ParamType::kInt},
+                    {"scale_factor", ParamType::kDouble},    {"draw_keypoints", ParamType::kBool},
+                    {"draw_grid", ParamType::kBool},         {"draw_text", ParamType::kBool}});
     seedPreset();
     ros::NodeHandle& nh = getNodeHandle();
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
     annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("input_address");
     server_ = std::make_unique<dynamic_reconfigure::Server<ExtractConfig>>(config_mutex_, getPrivateNodeHandle());
-    server_->setCallback([this](ExtractConfig& config, uint32_t) { reconfigure(config); });
+    server_->setCallback([this](ExtractConfig& config, uint32_t) {
+      try {
+        reconfigure(config);
+      } catch (const std::exception& e) {
+        NODELET_ERROR("reconfiguration failed, keeping the previous parameters: %s", e.what());
+        config = valid_;
+      }
+    });
   }
 
   bool outputsHaveSubscribers() const override {
     return keypoints_pub_.getNumSubscribers() > 0 || annotated_pub_.getNumSubscribers() > 0;
   }
 
-  void reconfigure(const ExtractConfig& config) {
-    // The input is enhanced upstream (EnhanceNodelet) or deliberately raw (the baseline).
+  static Params toParams(const ExtractConfig& config) {
     Params p;
-    p.enhance_enabled = false;
+    p.enhance_enabled = false;  // the input is enhanced upstream (EnhanceNodelet) or raw on purpose (baseline)
     p.threshold.c_min = config.c_min;
     p.threshold.threshold_scale = config.threshold_scale;
     p.threshold.grid_size = config.grid_size;
@@ -72,22 +86,48 @@ private:
     p.orb.candidate_ratio = config.candidate_ratio;
     p.orb.n_levels = config.n_levels;
     p.orb.scale_factor = config.scale_factor;
-    if (!parseThresholdMode(config.threshold_mode, p.orb.threshold_mode)) {
-      NODELET_WARN("threshold_mode '%s' is not adaptive or fixed; keeping the previous parameters",
-                   config.threshold_mode.c_str());
-      return;
+    parseThresholdMode(config.threshold_mode, p.orb.threshold_mode);
+    return p;
+  }
+
+  // A refused value is set back to the last valid one in `config`, which the server then reports:
+  // what dynamic_reconfigure shows is what runs, and one bad value never blocks the others.
+  void reconfigure(ExtractConfig& config) {
+    ThresholdMode mode;
+    if (!parseThresholdMode(config.threshold_mode, mode)) {
+      NODELET_WARN("threshold_mode '%s' is not adaptive or fixed; keeping '%s'", config.threshold_mode.c_str(),
+                   valid_.threshold_mode.c_str());
+      config.threshold_mode = valid_.threshold_mode;
     }
+    const std::map<std::string, std::function<std::string()>> restore = {
+        {"c_min", [&] { return std::to_string(config.c_min = valid_.c_min); }},
+        {"threshold_scale", [&] { return std::to_string(config.threshold_scale = valid_.threshold_scale); }},
+        {"grid_size", [&] { return std::to_string(config.grid_size = valid_.grid_size); }},
+        {"fast_threshold", [&] { return std::to_string(config.fast_threshold = valid_.fast_threshold); }},
+        {"max_features", [&] { return std::to_string(config.max_features = valid_.max_features); }},
+        {"candidate_ratio", [&] { return std::to_string(config.candidate_ratio = valid_.candidate_ratio); }},
+        {"n_levels", [&] { return std::to_string(config.n_levels = valid_.n_levels); }},
+        {"scale_factor", [&] { return std::to_string(config.scale_factor = valid_.scale_factor); }},
+    };
+    for (const std::string& problem : validate(toParams(config))) {
+      const auto it = restore.find(problem.substr(0, problem.find(' ')));
+      const std::string kept = it != restore.end() ? it->second() : "the previous value";
+      NODELET_WARN("%s; keeping %s", problem.c_str(), kept.c_str());
+    }
+    const Params p = toParams(config);
     std::shared_ptr<const OrbExtractor> extractor;
     try {
       extractor = std::make_shared<const OrbExtractor>(p);
-    } catch (const std::invalid_argument& e) {
-      NODELET_WARN("parameters rejected, keeping the previous ones: %s", e.what());
+    } catch (const std::invalid_argument& e) {  // only if the restored values are invalid together
+      NODELET_ERROR("parameters rejected, keeping the previous ones: %s", e.what());
+      config = valid_;
       return;
     }
     warnInactive(p, {{"c_min", std::to_string(config.c_min)},
                      {"threshold_scale", std::to_string(config.threshold_scale)},
                      {"fast_threshold", std::to_string(config.fast_threshold)},
                      {"candidate_ratio", std::to_string(config.candidate_ratio)}});
+    valid_ = config;
     std::lock_guard<std::mutex> lock(params_mutex_);
     extractor_ = extractor;
     draw_ = DrawOptions{config.draw_keypoints, config.draw_grid, config.draw_text};
@@ -129,7 +169,8 @@ private:
   boost::recursive_mutex config_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<ExtractConfig>> server_;
   std::mutex params_mutex_;
-  std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>();
+  ExtractConfig valid_ = ExtractConfig::__getDefault__();  // the last configuration applied
+  std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>(toParams(valid_));
   DrawOptions draw_;
 };
 

@@ -14,6 +14,10 @@ void ImageNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  warnWrongTypes({{"queue_size", ParamType::kInt},
+                  {"image_transport", ParamType::kString},
+                  {"debug_addresses", ParamType::kBool},
+                  {"preset", ParamType::kString}});
   pnh.param("queue_size", queue_size_, 5);
   if (queue_size_ < 1) {
     NODELET_WARN("~queue_size = %d is out of range [1, inf); using 1", queue_size_);
@@ -28,6 +32,9 @@ void ImageNodelet::onInit() {
   diagnostics_timer_ =
       nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
 
+  startup_timer_ = nh.createWallTimer(
+      ros::WallDuration(kStartupCheckS), [this](const ros::WallTimerEvent&) { checkStarted(); }, true);
+
   std::lock_guard<std::mutex> lock(connect_mutex_);
   advertiseOutputs();
 }
@@ -41,19 +48,56 @@ ros::SubscriberStatusCallback ImageNodelet::connectCallbackRos() {
 }
 
 void ImageNodelet::connect() {
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  const bool wanted = outputsHaveSubscribers();
-  if (wanted && !sub_) {
-    const image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+  try {
+    std::lock_guard<std::mutex> lock(connect_mutex_);
+    const bool wanted = outputsHaveSubscribers();
+    if (wanted) {
+      ever_subscribed_ = true;
+    }
+    if (wanted && !sub_) {
+      subscribeInput();
+    } else if (!wanted && sub_) {
+      NODELET_DEBUG("no subscriber left: unsubscribing %s", sub_.getTopic().c_str());
+      sub_.shutdown();
+    }
+  } catch (const std::exception& e) {
+    NODELET_ERROR("cannot (un)subscribe the input: %s", e.what());
+  }
+}
+
+void ImageNodelet::subscribeInput() {
+  const image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+  try {
     sub_ = it_->subscribe("image", queueSize(), &ImageNodelet::imageCallback, this, hints);
-    NODELET_DEBUG("subscribed to %s", sub_.getTopic().c_str());
-  } else if (!wanted && sub_) {
-    NODELET_DEBUG("no subscriber left: unsubscribing %s", sub_.getTopic().c_str());
-    sub_.shutdown();
+  } catch (const image_transport::TransportLoadException& e) {
+    // A transport whose plugin is not installed: say which ones are, and read raw images instead.
+    std::string available;
+    for (const std::string& name : it_->getLoadableTransports()) {
+      available += (available.empty() ? "" : ", ") + name;
+    }
+    NODELET_ERROR("image_transport '%s' cannot be loaded (%s); loadable here: %s; subscribing raw images instead",
+                  hints.getTransport().c_str(), e.what(), available.c_str());
+    sub_ = it_->subscribe("image", queueSize(), &ImageNodelet::imageCallback, this,
+                          image_transport::TransportHints("raw"));
+  }
+  subscribed_at_ = ros::WallTime::now();
+  NODELET_DEBUG("subscribed to %s (%s)", sub_.getTopic().c_str(), sub_.getTransport().c_str());
+}
+
+void ImageNodelet::checkStarted() {
+  // One-shot warnings, as opencv_apps gives: a chain nobody listens to, or an input that never comes.
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  if (!ever_subscribed_) {
+    NODELET_WARN("no subscriber on any output after %.0f s: the input is subscribed only while an output has one",
+                 kStartupCheckS);
+  } else if (sub_ && !ever_received_ && (ros::WallTime::now() - subscribed_at_).toSec() >= kStartupCheckS) {
+    NODELET_WARN("no image arrived on %s in %.0f s (publisher %s)", sub_.getTopic().c_str(), kStartupCheckS,
+                 sub_.getNumPublishers() ? "connected" : "missing");
   }
 }
 
 void ImageNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
+  ever_received_ = true;
   const GrayImage input = toGrayImage(msg);
   if (!input.error.empty()) {
     warnThrottled(input.reason, input.error);
@@ -153,6 +197,41 @@ void ImageNodelet::warnInactive(const Params& params, const std::map<std::string
     }
   }
   last_values_ = values;
+}
+
+void ImageNodelet::warnWrongTypes(const std::map<std::string, ParamType>& expected) {
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  for (const auto& [name, type] : expected) {
+    XmlRpc::XmlRpcValue value;
+    if (!pnh.getParam(name, value)) {
+      continue;
+    }
+    const XmlRpc::XmlRpcValue::Type got = value.getType();
+    bool ok = false;
+    const char* wanted = "";
+    switch (type) {
+      case ParamType::kBool:
+        ok = got == XmlRpc::XmlRpcValue::TypeBoolean;
+        wanted = "a bool";
+        break;
+      case ParamType::kInt:
+        ok = got == XmlRpc::XmlRpcValue::TypeInt;
+        wanted = "an int";
+        break;
+      case ParamType::kDouble:
+        ok = got == XmlRpc::XmlRpcValue::TypeDouble || got == XmlRpc::XmlRpcValue::TypeInt;
+        wanted = "a number";
+        break;
+      case ParamType::kString:
+        ok = got == XmlRpc::XmlRpcValue::TypeString;
+        wanted = "a string";
+        break;
+    }
+    if (!ok) {
+      NODELET_WARN("~%s = %s is not %s; it is ignored and the default is used", name.c_str(), value.toXml().c_str(),
+                   wanted);
+    }
+  }
 }
 
 }  // namespace enhanced_orb

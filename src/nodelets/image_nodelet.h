@@ -3,6 +3,7 @@
 #ifndef ENHANCED_ORB_IMAGE_NODELET_H
 #define ENHANCED_ORB_IMAGE_NODELET_H
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -47,6 +48,11 @@ protected:
   // text) that changed since the last call and has no effect under `params`, naming the reason.
   void warnInactive(const Params& params, const std::map<std::string, std::string>& values);
 
+  // Warns about each private parameter whose type on the parameter server is not the one the
+  // nodelet reads (`queue_size: ten`, `c_min: "abc"`): such a value is ignored for the default.
+  enum class ParamType { kBool, kInt, kDouble, kString };
+  void warnWrongTypes(const std::map<std::string, ParamType>& expected);
+
   image_transport::ImageTransport& transport() { return *it_; }
   // ~queue_size: of the input subscription and of every output, so that a subscriber in another
   // process that reads in bursts loses nothing the nodelet could keep.
@@ -55,12 +61,19 @@ protected:
 private:
   void onInit() final;
   void connect();
+  void subscribeInput();  // with ~image_transport; raw when that transport cannot be loaded
+  void checkStarted();
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_;
   std::mutex connect_mutex_;
+  static constexpr double kStartupCheckS = 10.0;
+  ros::WallTimer startup_timer_;
+  bool ever_subscribed_ = false;     // under connect_mutex_
+  std::atomic<bool> ever_received_{false};
+  ros::WallTime subscribed_at_;
   int queue_size_ = 5;
   bool debug_addresses_ = false;
 

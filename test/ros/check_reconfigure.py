@@ -65,9 +65,24 @@ class Reconfigure(unittest.TestCase):
             self.assertLess(high[stamp][0], low[stamp][0], "frame %s: %d keypoints at c_min 40, %d at 7"
                             % (stamp, high[stamp][0], low[stamp][0]))
 
+    def test_a_refused_value_is_reported_back_and_blocks_nothing(self):
+        client = dynamic_reconfigure.client.Client("/cam0/extract", timeout=30)
+        before = client.update_configuration({"threshold_mode": "adaptive", "c_min": 7})
+        config = client.update_configuration({"threshold_mode": "bogus"})
+        self.assertEqual(config["threshold_mode"], before["threshold_mode"],
+                         "the server reports a refused threshold_mode")
+        config = client.update_configuration({"c_min": 40})
+        self.assertEqual(config["c_min"], 40)
+        self.assertEqual(config["threshold_mode"], "adaptive")
+        rospy.sleep(SETTLE_S)
+        after = self.keypoints.collect()
+        self.assertGreater(len(after), 5)
+        self.assertTrue(all(min(t) >= 40 for _, t in after.values()), "c_min = 40 refused after a bad value")
+        nan = client.update_configuration({"threshold_scale": float("nan")})
+        self.assertEqual(nan["threshold_scale"], config["threshold_scale"], "NaN is reported as running")
+
     def test_changing_beta_changes_the_enhanced_image(self):
-        # EuRoC frames pass the quality test (lambda about 0.21 < 0.25), where beta plays no role;
-        # with gamma_mode always the brightness mask T_mask, weighted by beta, is applied.
+        # gamma_mode always (the default mode's): the brightness mask T_mask, weighted by beta, is applied.
         self.apply("/cam0/enhance", {"gamma_mode": "always", "beta": 0.0})
         before = self.enhanced.collect()
         self.apply("/cam0/enhance", {"beta": 1.0})
