@@ -1,5 +1,6 @@
-// Annotated images: keypoints with scale and orientation, coloured by octave, the cell grid with
-// each cell's threshold, and a line of text.
+// Annotated images that leave the scene visible: keypoints as small marks coloured by octave (at
+// most a chosen number, the strongest spread over the image), an octave legend, optional
+// orientation ticks, the cell grid with each cell's threshold, and a line of text.
 #ifndef ENHANCED_ORB_DRAW_H
 #define ENHANCED_ORB_DRAW_H
 
@@ -11,9 +12,11 @@
 namespace enhanced_orb {
 
 struct DrawOptions {
-  bool keypoints = true;  // circles of the keypoint's size with a radius along its angle
-  bool grid = false;      // the level-0 cell grid, each cell labelled with its FAST threshold
-  bool text = true;       // `caption` in the top-left corner
+  bool keypoints = true;     // a dot per keypoint, of radius 1 + octave / 2 px
+  bool orientation = false;  // a short tick along each keypoint's angle
+  bool grid = false;         // the level-0 cell grid, each cell labelled with its FAST threshold
+  bool text = true;          // `caption` in the top-left corner and the octave legend
+  int max_drawn = 300;       // at most this many keypoints, the strongest spread over the image; 0: all
 };
 
 // The colour (BGR) of an octave; the palette repeats after eight octaves.

@@ -1,13 +1,24 @@
 #include "enhanced_orb/draw.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/adaptive_threshold.h"
+#include "enhanced_orb/orb_extractor.h"
 
 namespace enhanced_orb {
+namespace {
+
+// White text with a dark outline: readable on any background.
+void outlinedText(cv::Mat& canvas, const std::string& text, cv::Point origin, double scale) {
+  cv::putText(canvas, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+  cv::putText(canvas, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+}
+
+}  // namespace
 
 cv::Scalar octaveColour(int octave) {
   static const std::array<cv::Scalar, 8> palette = {
@@ -37,20 +48,32 @@ cv::Mat drawAnnotated(const cv::Mat& image, const std::vector<cv::KeyPoint>& key
       }
     }
   }
+  int max_octave = -1;
   if (options.keypoints) {
-    for (const cv::KeyPoint& kp : keypoints) {
+    const bool all = options.max_drawn <= 0 || static_cast<int>(keypoints.size()) <= options.max_drawn;
+    const std::vector<cv::KeyPoint> drawn = all ? keypoints : selectSpread(keypoints, options.max_drawn, canvas.size());
+    for (const cv::KeyPoint& kp : drawn) {
       const cv::Scalar colour = octaveColour(kp.octave);
-      const float radius = kp.size / 2.0f;
-      const float angle = kp.angle * static_cast<float>(CV_PI / 180.0);
-      const cv::Point2f tip = kp.pt + radius * cv::Point2f(std::cos(angle), std::sin(angle));
-      cv::circle(canvas, kp.pt, cvRound(radius), colour, 1, cv::LINE_8);
-      cv::line(canvas, kp.pt, tip, colour, 1, cv::LINE_8);
+      const int radius = 1 + std::max(0, kp.octave) / 2;
+      max_octave = std::max(max_octave, kp.octave);
+      if (options.orientation) {
+        const float angle = kp.angle * static_cast<float>(CV_PI / 180.0);
+        const cv::Point2f tip = kp.pt + (radius + 4.0f) * cv::Point2f(std::cos(angle), std::sin(angle));
+        cv::line(canvas, kp.pt, tip, colour, 1, cv::LINE_8);
+      }
+      cv::circle(canvas, kp.pt, radius, colour, cv::FILLED, cv::LINE_8);
     }
   }
-  if (options.text && !caption.empty()) {
-    const cv::Point origin(8, 22);
-    cv::putText(canvas, caption, origin, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-    cv::putText(canvas, caption, origin, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  if (options.text) {
+    if (!caption.empty()) {
+      outlinedText(canvas, caption, cv::Point(8, 20), 0.5);
+    }
+    // Legend: one coloured dot per octave drawn, bottom left.
+    for (int o = 0; o <= max_octave; ++o) {
+      const cv::Point at(12 + 34 * o, canvas.rows - 10);
+      cv::circle(canvas, at, 1 + o / 2, octaveColour(o), cv::FILLED, cv::LINE_8);
+      outlinedText(canvas, std::to_string(o), at + cv::Point(6, 5), 0.4);
+    }
   }
   return canvas;
 }

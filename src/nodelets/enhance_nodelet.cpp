@@ -1,4 +1,5 @@
 // enhanced_orb/EnhanceNodelet: image -> image_enhanced (mono8, same header), section III-A.
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "enhanced_orb/EnhanceConfig.h"
+#include "enhanced_orb/EnhanceStatus.h"
 #include "enhanced_orb/enhance.h"
 #include "image_nodelet.h"
 
@@ -53,6 +55,7 @@ private:
                     {"gamma_mode", ParamType::kString}});
     seedPreset();
     pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());
+    status_pub_ = getNodeHandle().advertise<EnhanceStatus>("enhance_status", queueSize());
     address_pub_ = advertiseAddress("output_address");
     server_ = std::make_unique<dynamic_reconfigure::Server<EnhanceConfig>>(config_mutex_, getPrivateNodeHandle());
     server_->setCallback([this](EnhanceConfig& config, uint32_t) {
@@ -161,16 +164,50 @@ private:
     out->step = out->width;
     out->data.resize(static_cast<size_t>(out->step) * out->height);
     cv::Mat view(gray.rows, gray.cols, CV_8UC1, out->data.data(), out->step);
+    const auto start = std::chrono::steady_clock::now();
+    EnhanceResult result;
     if (enabled) {
-      enhance(gray, params, view);
+      result = enhance(gray, params, view);
     } else {
       gray.copyTo(view);
     }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     pub_.publish(out);
     publishAddress(address_pub_, *out);
+    publishStatus(msg->header, gray, params, enabled, result, ms);
+  }
+
+  void publishStatus(const std_msgs::Header& header, const cv::Mat& gray, const EnhanceParams& params, bool enabled,
+                     const EnhanceResult& result, double ms) {
+    auto status = boost::make_shared<EnhanceStatus>();
+    status->header = header;
+    status->lambda = static_cast<float>(enabled ? result.lambda : imageLambda(gray));
+    status->mean_gray = static_cast<float>(cv::mean(gray)[0]);
+    status->poor_quality = enabled && result.poor_quality;
+    status->inverted = result.inverted;
+    status->tone_curve = toString(params.tone_curve);
+    status->gamma_mode = enabled ? toString(params.gamma_mode) : "never";
+    status->enhance_ms = static_cast<float>(ms);
+    {
+      std::lock_guard<std::mutex> lock(status_mutex_);
+      last_status_ = *status;
+    }
+    status_pub_.publish(status);
+  }
+
+  void addDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) override {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    status.add("last lambda", last_status_.lambda);
+    status.add("last mean gray", last_status_.mean_gray);
+    status.add("tone curve", last_status_.tone_curve + " (gamma_mode " + last_status_.gamma_mode + ")");
+    status.add("tone curve applied to the last image", static_cast<bool>(last_status_.poor_quality));
+    status.add("last image inverted", static_cast<bool>(last_status_.inverted));
   }
 
   image_transport::Publisher pub_;
+  ros::Publisher status_pub_;
+  std::mutex status_mutex_;
+  EnhanceStatus last_status_;
   ros::Publisher address_pub_;
   boost::recursive_mutex config_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<EnhanceConfig>> server_;

@@ -1,10 +1,12 @@
 // enhanced_orb/ExtractNodelet: image -> keypoints (KeypointArray) and image_annotated (bgr8),
 // ORB with the truncated adaptive threshold (section III-B) or the original fixed threshold.
+#include <deque>
 #include <functional>
 #include <iomanip>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <dynamic_reconfigure/server.h>
@@ -12,6 +14,7 @@
 #include <boost/make_shared.hpp>
 #include <pluginlib/class_list_macros.hpp>
 
+#include "enhanced_orb/EnhanceStatus.h"
 #include "enhanced_orb/ExtractConfig.h"
 #include "enhanced_orb/draw.h"
 #include "enhanced_orb/orb_extractor.h"
@@ -60,6 +63,7 @@ private:
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
     annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("input_address");
+    status_sub_ = nh.subscribe("enhance_status", 10, &ExtractNodelet::onStatus, this);
     server_ = std::make_unique<dynamic_reconfigure::Server<ExtractConfig>>(config_mutex_, getPrivateNodeHandle());
     server_->setCallback([this](ExtractConfig& config, uint32_t) {
       try {
@@ -130,7 +134,8 @@ private:
     valid_ = config;
     std::lock_guard<std::mutex> lock(params_mutex_);
     extractor_ = extractor;
-    draw_ = DrawOptions{config.draw_keypoints, config.draw_grid, config.draw_text};
+    draw_ = DrawOptions{config.draw_keypoints, config.draw_orientation, config.draw_grid, config.draw_text,
+                        config.draw_max};
   }
 
   void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
@@ -155,15 +160,49 @@ private:
       out->step = out->width * 3;
       out->data.resize(static_cast<size_t>(out->step) * out->height);
       std::ostringstream caption;
-      caption << result.keypoints.size() << " keypoints  " << std::fixed << std::setprecision(1)
-              << result.timings.extractMs() << " ms  (" << toString(extractor->params().orb.threshold_mode) << ")";
+      caption << result.keypoints.size() << " keypoints";
+      if (draw.keypoints && draw.max_drawn > 0 && static_cast<int>(result.keypoints.size()) > draw.max_drawn) {
+        caption << " (" << draw.max_drawn << " drawn)";
+      }
+      caption << std::fixed << std::setprecision(2);
+      const std::optional<EnhanceStatus> status = statusOf(msg->header.stamp);
+      if (status) {
+        caption << " | lambda " << status->lambda << " | tone curve " << (status->poor_quality ? "on" : "off")
+                << (status->inverted ? " (inverted)" : "") << " | " << std::setprecision(1) << status->enhance_ms
+                << " + ";
+      } else {
+        caption << " | " << std::setprecision(1);
+      }
+      caption << result.timings.extractMs() << " ms | " << toString(extractor->params().orb.threshold_mode);
       drawAnnotated(result.image, result.keypoints, result.cell_thresholds, caption.str(), draw,
                     cv::Mat(gray.rows, gray.cols, CV_8UC3, out->data.data(), out->step));
       annotated_pub_.publish(out);
     }
   }
 
+  // The enhancement's status of the image with this stamp, when EnhanceNodelet sent one.
+  std::optional<EnhanceStatus> statusOf(const ros::Time& stamp) {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    for (auto it = statuses_.rbegin(); it != statuses_.rend(); ++it) {
+      if (it->header.stamp == stamp) {
+        return *it;
+      }
+    }
+    return std::nullopt;
+  }
+
+  void onStatus(const EnhanceStatus::ConstPtr& status) {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    statuses_.push_back(*status);
+    if (statuses_.size() > 32) {
+      statuses_.pop_front();
+    }
+  }
+
   ros::Publisher keypoints_pub_;
+  ros::Subscriber status_sub_;
+  std::mutex status_mutex_;
+  std::deque<EnhanceStatus> statuses_;
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
   boost::recursive_mutex config_mutex_;

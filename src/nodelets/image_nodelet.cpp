@@ -168,6 +168,7 @@ void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("frames rejected (bad input)", rejected_);
   status.add("frames failed", failed_);
   status.add("input subscribed", subscribed);
+  addDiagnostics(status);
   if (failed_ > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "processing failed on some frames");
   } else if (rejected_ > 0) {

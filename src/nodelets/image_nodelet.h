@@ -32,6 +32,9 @@ protected:
   // Exceptions are caught, logged and counted by the caller.
   virtual void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) = 0;
 
+  // Adds a nodelet's own values to its /diagnostics status (called once a second).
+  virtual void addDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& /*status*/) {}
+
   image_transport::SubscriberStatusCallback connectCallback();
   ros::SubscriberStatusCallback connectCallbackRos();
 
