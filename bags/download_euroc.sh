@@ -4,9 +4,13 @@
 #   bash bags/download_euroc.sh [SEQUENCE]     default MH_01_easy
 #
 # SEQUENCE: MH_01_easy ... MH_05_difficult, V1_01_easy ... V1_03_difficult, V2_01_easy ... V2_03_difficult.
-# EUROC_BASE_URL overrides where the dataset is served from (it has moved before).
+# The dataset is now published in ETH's research collection (RESEARCH_COLLECTION below), whose file
+# links are not derived from the sequence name: there, download SEQUENCE.bag by hand. The script
+# fetches from a tree laid out as BASE/<folder>/SEQUENCE/SEQUENCE.bag: EUROC_BASE_URL (a mirror),
+# else the dataset's former server, and says where to look when neither answers.
 set -euo pipefail
 SEQUENCE=${1:-MH_01_easy}
+RESEARCH_COLLECTION=https://www.research-collection.ethz.ch/entities/researchdata/bcaf173e-5dac-484b-bc37-faf97a594f1f
 BASE=${EUROC_BASE_URL:-http://robotics.ethz.ch/~asl-datasets/ijrr_euroc_mav_dataset}
 case "$SEQUENCE" in
   MH_0[1-5]_*) FOLDER=machine_hall ;;
@@ -18,8 +22,14 @@ URL="$BASE/$FOLDER/$SEQUENCE/$SEQUENCE.bag"
 OUT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/$SEQUENCE.bag"
 
 # The size the server announces (last Content-Length after redirects).
-expected=$(curl -sIL "$URL" | tr -d '\r' | awk 'tolower($1) == "content-length:" {n = $2} END {print n}')
-[ -n "$expected" ] || { echo "download_euroc: no answer from $URL" >&2; exit 1; }
+expected=$({ curl -sIL --max-time 30 "$URL" || true; } | tr -d '\r' | awk 'tolower($1) == "content-length:" {n = $2} END {print n}')
+if [ -z "$expected" ]; then
+  echo "download_euroc: no answer from $URL" >&2
+  echo "  EuRoC is published at $RESEARCH_COLLECTION" >&2
+  echo "  download $SEQUENCE.bag there, then: roslaunch enhanced_orb euroc.launch bag:=/path/to/$SEQUENCE.bag" >&2
+  echo "  or set EUROC_BASE_URL to a mirror laid out as BASE/$FOLDER/$SEQUENCE/$SEQUENCE.bag" >&2
+  exit 1
+fi
 
 if [ -f "$OUT" ] && [ "$(stat -c %s "$OUT")" = "$expected" ]; then
   echo "download_euroc: $OUT is complete"

@@ -51,7 +51,7 @@ struct EnhanceParams {
   double blur_sigma = 1.0;      // eq 8: Gaussian sigma, [0.1, 10]
   double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode auto), [0, 1]
   GammaMode gamma_mode = GammaMode::kAlways;
-  int tone_tiles = 4;           // equalize: tiles per side, one curve each, interpolated, [1, 16]
+  int tone_tiles = 4;  // equalize: tiles per side, one curve each, interpolated, [1, 16]
 };
 
 // Section III-B: truncated adaptive threshold.
@@ -64,8 +64,8 @@ struct ThresholdParams {
 // Section II and IV: the ORB pipeline around the threshold.
 struct OrbParams {
   ThresholdMode threshold_mode = ThresholdMode::kAdaptive;
-  int fast_threshold = 20;    // the original ORB's fixed threshold (kFixed), [1, 200]
-  int max_features = 1000;    // 0: every corner; > 0: budget over all levels, [0, 100000]
+  int fast_threshold = 20;  // the original ORB's fixed threshold (kFixed), [1, 200]
+  int max_features = 1000;  // 0: every corner; > 0: budget over all levels, [0, 100000]
   // > 0: a level's spread selection draws from its candidate_ratio x budget strongest corners only;
   // 0: from every corner (the paper). [0, 100]
   double candidate_ratio = 1.5;

@@ -92,8 +92,8 @@ cv::Mat Degradation::apply(const cv::Mat& gray, std::uint64_t seed) const {
 }
 
 std::vector<Degradation> standardDegradations() {
-  return {{"none"},      {"lowlight"}, {"lowlight_gain"}, {"night"},   {"spotlight"}, {"gradient"},
-          {"dark"},      {"bright"},   {"gamma_0.5"},     {"gamma_2"}, {"noise_10"}};
+  return {{"none"}, {"lowlight"}, {"lowlight_gain"}, {"night"},   {"spotlight"}, {"gradient"},
+          {"dark"}, {"bright"},   {"gamma_0.5"},     {"gamma_2"}, {"noise_10"}};
 }
 
 }  // namespace evaluation

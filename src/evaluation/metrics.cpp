@@ -225,8 +225,8 @@ double poseAuc(std::vector<double> errors, double threshold) {
     area += (errors[i] - previous) * (static_cast<double>(i) / n);
     previous = errors[i];
   }
-  const double reached = static_cast<double>(std::upper_bound(errors.begin(), errors.end(), threshold - 1e-12) -
-                                             errors.begin());
+  const double reached =
+      static_cast<double>(std::upper_bound(errors.begin(), errors.end(), threshold - 1e-12) - errors.begin());
   area += (threshold - previous) * (reached / n);
   return area / threshold;
 }

@@ -47,11 +47,16 @@ private:
   }
 
   void advertiseOutputs() override {
-    warnWrongTypes({{"enabled", ParamType::kBool},       {"tone_curve", ParamType::kString},
-                    {"tone_tiles", ParamType::kInt},     {"alpha", ParamType::kDouble},
-                    {"tau", ParamType::kDouble},         {"beta", ParamType::kDouble},
-                    {"sharpening", ParamType::kDouble},  {"blur_ksize", ParamType::kInt},
-                    {"blur_sigma", ParamType::kDouble},  {"std_threshold", ParamType::kDouble},
+    warnWrongTypes({{"enabled", ParamType::kBool},
+                    {"tone_curve", ParamType::kString},
+                    {"tone_tiles", ParamType::kInt},
+                    {"alpha", ParamType::kDouble},
+                    {"tau", ParamType::kDouble},
+                    {"beta", ParamType::kDouble},
+                    {"sharpening", ParamType::kDouble},
+                    {"blur_ksize", ParamType::kInt},
+                    {"blur_sigma", ParamType::kDouble},
+                    {"std_threshold", ParamType::kDouble},
                     {"gamma_mode", ParamType::kString}});
     seedPreset();
     pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());

@@ -52,12 +52,18 @@ private:
   }
 
   void advertiseOutputs() override {
-    warnWrongTypes({{"threshold_mode", ParamType::kString}, {"c_min", ParamType::kInt},
-                    {"threshold_scale", ParamType::kDouble}, {"grid_size", ParamType::kInt},
-                    {"fast_threshold", ParamType::kInt},     {"max_features", ParamType::kInt},
-                    {"candidate_ratio", ParamType::kDouble}, {"n_levels", ParamType::kInt},
-                    {"scale_factor", ParamType::kDouble},    {"draw_keypoints", ParamType::kBool},
-                    {"draw_grid", ParamType::kBool},         {"draw_text", ParamType::kBool}});
+    warnWrongTypes({{"threshold_mode", ParamType::kString},
+                    {"c_min", ParamType::kInt},
+                    {"threshold_scale", ParamType::kDouble},
+                    {"grid_size", ParamType::kInt},
+                    {"fast_threshold", ParamType::kInt},
+                    {"max_features", ParamType::kInt},
+                    {"candidate_ratio", ParamType::kDouble},
+                    {"n_levels", ParamType::kInt},
+                    {"scale_factor", ParamType::kDouble},
+                    {"draw_keypoints", ParamType::kBool},
+                    {"draw_grid", ParamType::kBool},
+                    {"draw_text", ParamType::kBool}});
     seedPreset();
     ros::NodeHandle& nh = getNodeHandle();
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());

@@ -74,7 +74,7 @@ private:
   std::mutex connect_mutex_;
   static constexpr double kStartupCheckS = 10.0;
   ros::WallTimer startup_timer_;
-  bool ever_subscribed_ = false;     // under connect_mutex_
+  bool ever_subscribed_ = false;  // under connect_mutex_
   std::atomic<bool> ever_received_{false};
   ros::WallTime subscribed_at_;
   int queue_size_ = 5;

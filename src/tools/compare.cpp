@@ -2,10 +2,10 @@
 // Writes CSV files that scripts/results.py turns into the tables and plots of docs/RESULTS.md.
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <cstdint>
 #include <map>
 #include <sstream>
 #include <string>
@@ -164,8 +164,8 @@ void compareLighting(const Options& o, const std::vector<Runner>& all) {
     const double tolerance = p.set == "webcam" ? 4.0 : 3.0;
     for (size_t m = 0; m < all.size(); ++m) {
       std::ostringstream row;
-      row << p.set << "," << p.sequence << "," << fs::path(p.target).filename().string() << "," << p.mean_target
-          << "," << all[m].label << "," << all[m].budget << ",";
+      row << p.set << "," << p.sequence << "," << fs::path(p.target).filename().string() << "," << p.mean_target << ","
+          << all[m].label << "," << all[m].budget << ",";
       if (ref.empty() || target.empty()) {
         row << "0,0,0,0,0\n";
       } else {
@@ -289,8 +289,9 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
       const PairJob& job = jobs[k / n_deg];
       const int d = k % n_deg;
       const ev::Features& a = at(job.first, d);
-      const ev::Features b = job.right ? method.run(w, degradations[d].apply(*job.right, 7777ULL + 1000ULL * d + job.first))
-                                       : at(job.first + job.step, d);
+      const ev::Features b = job.right
+                                 ? method.run(w, degradations[d].apply(*job.right, 7777ULL + 1000ULL * d + job.first))
+                                 : at(job.first + job.step, d);
       const std::vector<cv::DMatch> matches = ev::mutualMatches(a.descriptors, b.descriptors);
       std::vector<cv::Point2f> p1, p2;
       int correct = 0;
@@ -305,9 +306,9 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
       const ev::PoseError error = ev::poseError(pose, job.truth);
       std::ostringstream row;
       row << job.first << "," << (job.right ? std::string("stereo") : "+" + std::to_string(job.step)) << ","
-          << job.is_static << "," << degradations[d].name << "," << method.label << ","
-          << method.budget << "," << matches.size() << "," << correct << "," << pose.inliers << ","
-          << error.rotation_deg << "," << error.translation_deg << "\n";
+          << job.is_static << "," << degradations[d].name << "," << method.label << "," << method.budget << ","
+          << matches.size() << "," << correct << "," << pose.inliers << "," << error.rotation_deg << ","
+          << error.translation_deg << "\n";
       rows[k] = row.str();
     });
     for (const std::string& r : rows) {
@@ -347,8 +348,9 @@ int main(int argc, char** argv) {
       o.degradations = splitList(v);
     } else if (arg == "--set") {
       const size_t eq = v.find('=');
-      const std::string error =
-          eq == std::string::npos ? "expected NAME=VALUE" : enhanced_orb::setParam(o.params, v.substr(0, eq), v.substr(eq + 1));
+      const std::string error = eq == std::string::npos
+                                    ? "expected NAME=VALUE"
+                                    : enhanced_orb::setParam(o.params, v.substr(0, eq), v.substr(eq + 1));
       if (!error.empty()) {
         std::cerr << "enhanced_orb_compare: --set " << v << ": " << error << "\n";
         return 2;

@@ -22,9 +22,9 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "enhanced_orb/evaluation/metrics.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
-#include "enhanced_orb/evaluation/metrics.h"
 
 namespace fs = std::filesystem;
 namespace ev = enhanced_orb::evaluation;

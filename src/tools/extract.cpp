@@ -199,9 +199,9 @@ int main(int argc, char** argv) {
       if (opt.save_annotated) {
         std::ostringstream caption;
         caption << r.keypoints.size() << " keypoints, " << cvRound(r.timings.totalMs() * 10) / 10.0 << " ms";
-        writeImage(
-            stem.string() + "_annotated.png",
-            enhanced_orb::drawAnnotated(r.image, r.keypoints, r.cell_thresholds, caption.str(), enhanced_orb::DrawOptions{true, false, true, true, 300}));
+        writeImage(stem.string() + "_annotated.png",
+                   enhanced_orb::drawAnnotated(r.image, r.keypoints, r.cell_thresholds, caption.str(),
+                                               enhanced_orb::DrawOptions{true, false, true, true, 300}));
       }
       std::cout << path << ": " << r.keypoints.size() << " keypoints, enhance " << r.timings.enhance_ms
                 << " ms, extract " << r.timings.extractMs() << " ms\n";

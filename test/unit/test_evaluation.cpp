@@ -64,8 +64,8 @@ TEST(Evaluation, EpipolarGroundTruthOfASidewaysStep) {
 TEST(Pose, AucOfPerfectAndFailedEstimates) {
   EXPECT_DOUBLE_EQ(ev::poseAuc({0.0, 0.0}, 10.0), 1.0);
   EXPECT_DOUBLE_EQ(ev::poseAuc({180.0, 180.0}, 10.0), 0.0);
-  EXPECT_NEAR(ev::poseAuc({5.0}, 10.0), 0.5, 1e-9);           // recall 1 from 5 degrees on
-  EXPECT_NEAR(ev::poseAuc({0.0, 180.0}, 10.0), 0.5, 1e-9);    // half the pairs perfect
+  EXPECT_NEAR(ev::poseAuc({5.0}, 10.0), 0.5, 1e-9);         // recall 1 from 5 degrees on
+  EXPECT_NEAR(ev::poseAuc({0.0, 180.0}, 10.0), 0.5, 1e-9);  // half the pairs perfect
 }
 
 TEST(Pose, EstimateRecoversAKnownMotion) {

@@ -29,11 +29,11 @@ struct FrameRef {
 
 // A EuRoC sequence in ASL layout (DIR or DIR/mav0).
 struct EurocSequence {
-  std::string mav0;                     // the mav0 folder
-  std::vector<FrameRef> frames;         // listed in <camera>/data.csv and present on disk
-  std::vector<std::string> missing;     // listed but absent
-  std::optional<Camera> camera;         // <camera>/sensor.yaml
-  std::optional<Trajectory> trajectory; // state_groundtruth_estimate0
+  std::string mav0;                      // the mav0 folder
+  std::vector<FrameRef> frames;          // listed in <camera>/data.csv and present on disk
+  std::vector<std::string> missing;      // listed but absent
+  std::optional<Camera> camera;          // <camera>/sensor.yaml
+  std::optional<Trajectory> trajectory;  // state_groundtruth_estimate0
 };
 
 // Reads <dir>/[mav0/]<camera>/data.csv ("#timestamp [ns],filename", spaces after commas allowed).
@@ -56,8 +56,8 @@ struct ImagePair {
 };
 
 // Reads <dir>/pairs.csv, whose header names the columns (seq, ref, target, mean_ref, mean_target
-// and gt are required, others ignored), with image paths relative to `dir`; gt is "identity" or the name of a file holding a 3x3 homography (9
-// numbers, row-major) beside pairs.csv. Throws DatasetError naming file, line and value.
+// and gt are required, others ignored), with image paths relative to `dir`; gt is "identity" or the name of a file
+// holding a 3x3 homography (9 numbers, row-major) beside pairs.csv. Throws DatasetError naming file, line and value.
 std::vector<ImagePair> readPairs(const std::string& dir);
 
 // Reads an 8-bit gray image; empty when it cannot be decoded.

@@ -80,13 +80,14 @@ RelativePose groundTruthPose(const Camera& camera1, const cv::Matx44d& T_WB1, co
 // Where the cameras barely moved (|t| < min_baseline metres), the epipolar test says nothing: such
 // pairs are judged by the rotation alone (x2 = K2 R K1^-1 x1 on undistorted pixels, within tolerance).
 bool isStatic(const RelativePose& pose, double min_baseline = 0.02);
-GroundTruth rotationOnly(const Camera& camera1, const Camera& camera2, const RelativePose& pose, double tolerance = 3.0);
+GroundTruth rotationOnly(const Camera& camera1, const Camera& camera2, const RelativePose& pose,
+                         double tolerance = 3.0);
 
 // Relative pose from matched pixels, as a monocular front end estimates it: undistorted points,
 // essential matrix by RANSAC (1 px, confidence 0.999, a fixed seed), cheirality check.
 struct PoseEstimate {
-  bool ok = false;   // false: fewer than 5 matches or no essential matrix
-  int inliers = 0;   // matches consistent with the estimate
+  bool ok = false;  // false: fewer than 5 matches or no essential matrix
+  int inliers = 0;  // matches consistent with the estimate
   cv::Matx33d R;
   cv::Vec3d t;
 };
