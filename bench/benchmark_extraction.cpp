@@ -16,6 +16,8 @@
 
 #include "enhanced_orb/adaptive_threshold.h"
 #include "enhanced_orb/enhance.h"
+#include "enhanced_orb/evaluation/dataset.h"
+#include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/orb_extractor.h"
 
 namespace eo = enhanced_orb;
@@ -211,18 +213,17 @@ int main(int argc, char** argv) {
     std::cerr << "benchmark_extraction: no frames at " << dir << " (give --frames DIR)\n";
     return 1;
   }
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.path().extension() == ".png") {
-      files.push_back(entry.path());
+  for (const enhanced_orb::evaluation::FrameRef& ref : enhanced_orb::evaluation::readImageFolder(dir)) {
+    std::string error;
+    cv::Mat gray = enhanced_orb::evaluation::readGrayChecked(ref.path, enhanced_orb::evaluation::kMaxPixels, error);
+    if (gray.empty()) {
+      std::cerr << "benchmark_extraction: skipped " << error << "\n";
+    } else {
+      frames().push_back(gray);
     }
   }
-  std::sort(files.begin(), files.end());
-  for (const fs::path& file : files) {
-    frames().push_back(cv::imread(file.string(), cv::IMREAD_GRAYSCALE));
-  }
   if (frames().empty()) {
-    std::cerr << "benchmark_extraction: no .png frames in " << dir << "\n";
+    std::cerr << "benchmark_extraction: no readable image in " << dir << "\n";
     return 1;
   }
   cv::setNumThreads(1);  // single-threaded, every method alike

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Makes docs/annotated.jpg, the README's picture: a scene drawn here (no third-party image),
-darkened to 35 % of its brightness, run through enhanced_orb_extract as the enhanced ORB and as
-the original ORB, side by side.
+darkened to 35 % of its brightness, run through enhanced_orb_extract in the default mode, the
+paper preset and as the original ORB, at 1000 features, side by side.
 
   python3 docs/make_figure.py [--tool devel/lib/enhanced_orb/enhanced_orb_extract]
 """
@@ -43,20 +43,18 @@ def main():
         src = os.path.join(tmp, "scene.png")
         cv2.imwrite(src, dark)
         panels = []
-        for name, flags in (("enhanced", []), ("original", ["--baseline"])):
+        for name, flags in (("default", []), ("paper", ["--preset", "paper"]), ("original", ["--baseline"])):
             out = os.path.join(tmp, name)
             subprocess.run([args.tool, *flags, "--max-features", "1000", "--save-annotated", src, "--output", out],
                            check=True, stdout=subprocess.DEVNULL)
             panel = cv2.imread(os.path.join(out, "scene_annotated.png"))
-            label = "enhanced ORB (this package)" if name == "enhanced" else "original ORB (fixed threshold 20)"
-            cv2.putText(panel, label, (10, panel.shape[0] - 14), cv2.FONT_HERSHEY_SIMPLEX, 0.7, (0, 0, 0), 4,
-                        cv2.LINE_AA)
-            cv2.putText(panel, label, (10, panel.shape[0] - 14), cv2.FONT_HERSHEY_SIMPLEX, 0.7, (255, 255, 255), 1,
-                        cv2.LINE_AA)
+            label = {"default": "default mode", "paper": "paper preset", "original": "original ORB (FAST 20)"}[name]
+            cv2.putText(panel, label, (10, 46), cv2.FONT_HERSHEY_SIMPLEX, 0.7, (0, 0, 0), 4, cv2.LINE_AA)
+            cv2.putText(panel, label, (10, 46), cv2.FONT_HERSHEY_SIMPLEX, 0.7, (255, 255, 255), 1, cv2.LINE_AA)
             panels.append(panel)
     gap = np.zeros((panels[0].shape[0], 8, 3), np.uint8)
-    figure = np.hstack([panels[0], gap, panels[1]])
-    figure = cv2.resize(figure, None, fx=0.75, fy=0.75, interpolation=cv2.INTER_AREA)
+    figure = np.hstack([panels[0], gap, panels[1], gap, panels[2]])
+    figure = cv2.resize(figure, None, fx=0.6, fy=0.6, interpolation=cv2.INTER_AREA)
     cv2.imwrite(args.output, figure, [cv2.IMWRITE_JPEG_QUALITY, 85])
     print("wrote", args.output)
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -65,6 +66,37 @@ T parseField(const fs::path& file, int line, const std::string& name, const std:
 
 }  // namespace
 
+std::vector<CsvRow> readCsv(const std::string& file) {
+  std::ifstream in = openFile(file);
+  std::vector<CsvRow> rows;
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    text = trim(text);
+    if (!text.empty() && text[0] != '#') {
+      rows.push_back({line, splitCsv(text)});
+    }
+  }
+  return rows;
+}
+
+std::int64_t csvInteger(const std::string& file, const CsvRow& row, size_t column, const std::string& name) {
+  if (column >= row.fields.size()) {
+    fail(file, row.line, "no field " + name);
+  }
+  return parseField<std::int64_t>(file, row.line, name, row.fields[column]);
+}
+
+double csvNumber(const std::string& file, const CsvRow& row, size_t column, const std::string& name) {
+  if (column >= row.fields.size()) {
+    fail(file, row.line, "no field " + name);
+  }
+  const double v = parseField<double>(file, row.line, name, row.fields[column]);
+  if (!std::isfinite(v)) {
+    fail(file, row.line, name + " '" + row.fields[column] + "' is not finite");
+  }
+  return v;
+}
+
 EurocSequence readEuroc(const std::string& dir, const std::string& camera) {
   EurocSequence seq;
   fs::path mav0 = dir;
@@ -72,20 +104,13 @@ EurocSequence readEuroc(const std::string& dir, const std::string& camera) {
     mav0 /= "mav0";
   }
   seq.mav0 = mav0.string();
-  const fs::path csv = mav0 / camera / "data.csv";
-  std::ifstream in = openFile(csv);
-  std::string text;
-  for (int line = 1; std::getline(in, text); ++line) {
-    text = trim(text);
-    if (text.empty() || text[0] == '#') {
-      continue;
+  const std::string csv = (mav0 / camera / "data.csv").string();
+  for (const CsvRow& row : readCsv(csv)) {
+    if (row.fields.size() < 2 || row.fields[1].empty()) {
+      fail(csv, row.line, "expected 'timestamp,filename'");
     }
-    const std::vector<std::string> fields = splitCsv(text);
-    if (fields.size() < 2 || fields[1].empty()) {
-      fail(csv, line, "expected 'timestamp,filename', got '" + text + "'");
-    }
-    const auto stamp = parseField<std::int64_t>(csv, line, "timestamp", fields[0]);
-    const fs::path file = mav0 / camera / "data" / fields[1];
+    const std::int64_t stamp = csvInteger(csv, row, 0, "timestamp");
+    const fs::path file = mav0 / camera / "data" / row.fields[1];
     if (fs::is_regular_file(file)) {
       seq.frames.push_back({file.string(), stamp});
     } else {

@@ -17,6 +17,7 @@
 
 #include "enhanced_orb/evaluation/dataset.h"
 #include "enhanced_orb/evaluation/degrade.h"
+#include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/evaluation/methods.h"
 #include "enhanced_orb/evaluation/metrics.h"
 
@@ -143,7 +144,8 @@ void compareLighting(const Options& o, const std::vector<Runner>& all) {
       pairs.push_back(std::move(p));
     }
   }
-  std::ofstream csv(fs::path(o.output) / "lighting.csv");
+  ev::AtomicFile csv_file((fs::path(o.output) / "lighting.csv").string());  // renamed when complete
+  std::ofstream csv(csv_file.temporary());
   csv << "set,sequence,target,mean_target,method,budget,keypoints_ref,keypoints_target,matches,correct,"
          "repeatability\n";
   std::vector<std::string> rows(pairs.size() * all.size());
@@ -187,6 +189,8 @@ void compareLighting(const Options& o, const std::vector<Runner>& all) {
   for (const std::string& r : rows) {
     csv << r;
   }
+  csv.close();
+  csv_file.commit();
 }
 
 void compareEuroc(const Options& o, const std::vector<Runner>& all) {
@@ -255,9 +259,11 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
     std::cerr << "enhanced_orb_compare: " << o.euroc << " has no calibration or ground truth: frame pairs skipped\n";
   }
 
-  std::ofstream photometric(fs::path(o.output) / "euroc_photometric.csv");
+  ev::AtomicFile photometric_file((fs::path(o.output) / "euroc_photometric.csv").string());
+  std::ofstream photometric(photometric_file.temporary());
   photometric << "frame,degradation,method,budget,keypoints,matches,correct,repeatability,ms\n";
-  std::ofstream pair_csv(fs::path(o.output) / "euroc_pairs.csv");
+  ev::AtomicFile pairs_file((fs::path(o.output) / "euroc_pairs.csv").string());
+  std::ofstream pair_csv(pairs_file.temporary());
   pair_csv << "frame,pair,static,degradation,method,budget,matches,correct,inliers,rotation_deg,translation_deg\n";
   for (size_t m = 0; m < all.size(); ++m) {
     const Runner& method = all[m];
@@ -315,6 +321,10 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
       pair_csv << r;
     }
   }
+  photometric.close();
+  pair_csv.close();
+  photometric_file.commit();
+  pairs_file.commit();
 }
 
 }  // namespace

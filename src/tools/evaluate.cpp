@@ -22,6 +22,8 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "enhanced_orb/evaluation/dataset.h"
+#include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/evaluation/metrics.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
@@ -46,16 +48,22 @@ options:
   --pair-every N         frame pairs start every N-th frame (default 5)
   --steps K[,K...]       frame pairs K frames apart (default 1,5,10)
   --max-frames N         use at most N frames
+  --budgets K[,K...]     feature budgets, 0 = every corner (default 0,1000)
   -h, --help             this text
 
 Writes frames.csv (per frame and method: keypoints, ms), table2.csv (means), figure6.csv
 (photometric changes: keypoints, ms, matches, correct, accuracy, repeatability), pairs.csv
-(frame pairs: matches, correct, accuracy) and meta.csv (input, machine, versions).
+(frame pairs: matches, correct, accuracy; pairs without motion are counted in static_excluded and
+not scored) and meta.csv (input, machine, versions, frames skipped). The files are written under
+temporary names and renamed together at the end. An image that cannot be read, is over 32 Mpixel
+or that a method cannot process (one pixel wide, say) is reported and left out for every method.
+exit codes: 0 done, 1 no usable frame or an output could not be written, 2 bad arguments.
 )";
 
 struct Frame {
   cv::Mat gray;
   std::int64_t stamp = 0;  // ns; 0 when unknown
+  std::string source;      // file, or bag message
 };
 
 struct Features {
@@ -78,9 +86,9 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::vector<Method> methods() {
+std::vector<Method> methods(const std::vector<int>& budgets) {
   std::vector<Method> out;
-  for (int budget : {0, 1000}) {
+  for (int budget : budgets) {
     for (const std::string name : {"baseline", "improved"}) {
       Params p = name == "baseline" ? Params::baseline() : Params::paper();
       p.orb.max_features = budget;
@@ -161,34 +169,39 @@ void progress(const std::string& what, size_t done, size_t total) {
   }
 }
 
-std::vector<fs::path> sortedFiles(const fs::path& dir, const std::vector<std::string>& extensions) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    std::string ext = entry.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) {
-      files.push_back(entry.path());
+// A CSV file written under a temporary name, renamed by commit(): nothing half-written is left.
+class CsvFile {
+public:
+  explicit CsvFile(const fs::path& path) : file_(path.string()), out_(file_.temporary()) {
+    if (!out_) {
+      throw std::runtime_error("cannot write " + path.string());
     }
   }
-  std::sort(files.begin(), files.end());
-  return files;
-}
+  std::ofstream& out() { return out_; }
+  void commit() {
+    out_.close();
+    if (!out_) {
+      throw std::runtime_error("cannot write " + file_.path());
+    }
+    file_.commit();
+  }
 
-std::vector<Frame> readEuroc(const fs::path& mav0) {
+private:
+  ev::AtomicFile file_;
+  std::ofstream out_;
+};
+
+// Frames from files, each read with the pixel limit; a file that cannot be read is reported and skipped.
+std::vector<Frame> readFrames(const std::vector<ev::FrameRef>& refs) {
   std::vector<Frame> frames;
-  std::ifstream csv(mav0 / "cam0" / "data.csv");
-  std::string line;
-  while (std::getline(csv, line)) {
-    if (line.empty() || line[0] == '#') {
+  for (const ev::FrameRef& ref : refs) {
+    std::string error;
+    cv::Mat gray = ev::readGrayChecked(ref.path, ev::kMaxPixels, error);
+    if (gray.empty()) {
+      std::cerr << "enhanced_orb_evaluate: skipped " << error << "\n";
       continue;
     }
-    const size_t comma = line.find(',');
-    std::string name = line.substr(comma + 1);
-    name.erase(std::remove(name.begin(), name.end(), '\r'), name.end());
-    const fs::path file = mav0 / "cam0" / "data" / name;
-    if (fs::exists(file)) {
-      frames.push_back({cv::imread(file.string(), cv::IMREAD_GRAYSCALE), std::stoll(line.substr(0, comma))});
-    }
+    frames.push_back({gray, ref.stamp, ref.path});
   }
   return frames;
 }
@@ -207,7 +220,8 @@ std::vector<Frame> readBag(const std::string& file, const std::string& topic) {
       std::cerr << "enhanced_orb_evaluate: skipped a message: " << g.error << "\n";
       continue;
     }
-    frames.push_back({g.gray.clone(), static_cast<std::int64_t>(msg->header.stamp.toNSec())});
+    frames.push_back({g.gray.clone(), static_cast<std::int64_t>(msg->header.stamp.toNSec()),
+                      file + " message " + std::to_string(frames.size())});
   }
   return frames;
 }
@@ -227,6 +241,7 @@ struct Options {
   std::string euroc, images, bag, topic, output = "results";
   int every = 10, pair_every = 5, max_frames = 0;
   std::vector<int> steps{1, 5, 10};
+  std::vector<int> budgets{0, 1000};
 };
 
 bool parse(int argc, char** argv, Options& o, std::string& error) {
@@ -265,6 +280,18 @@ bool parse(int argc, char** argv, Options& o, std::string& error) {
       if (!number(v, target)) {
         error = "invalid value for " + arg + ": '" + v + "'";
         return false;
+      }
+    } else if (arg == "--budgets") {
+      o.budgets.clear();
+      std::istringstream in(v);
+      std::string k;
+      while (std::getline(in, k, ',')) {
+        int budget = 0;
+        if (k != "0" && !number(k, budget)) {
+          error = "invalid --budgets '" + v + "'";
+          return false;
+        }
+        o.budgets.push_back(budget);
       }
     } else if (arg == "--steps") {
       o.steps.clear();
@@ -306,18 +333,13 @@ int main(int argc, char** argv) {
     std::optional<ev::Trajectory> trajectory;
     std::string input;
     if (!opt.euroc.empty()) {
-      fs::path mav0 = opt.euroc;
-      if (fs::is_directory(mav0 / "mav0")) {
-        mav0 /= "mav0";
-      }
-      frames = readEuroc(mav0);
-      camera = ev::readCamera(mav0.string(), "cam0");
-      trajectory = ev::Trajectory::read(mav0.string());
-      input = "EuRoC " + fs::absolute(mav0).lexically_normal().string() + " cam0";
+      const ev::EurocSequence seq = ev::readEuroc(opt.euroc);
+      frames = readFrames(seq.frames);
+      camera = seq.camera;
+      trajectory = seq.trajectory;
+      input = "EuRoC " + fs::absolute(seq.mav0).lexically_normal().string() + " cam0";
     } else if (!opt.images.empty()) {
-      for (const fs::path& f : sortedFiles(opt.images, {".png", ".jpg", ".jpeg", ".pgm", ".bmp"})) {
-        frames.push_back({cv::imread(f.string(), cv::IMREAD_GRAYSCALE), 0});
-      }
+      frames = readFrames(ev::readImageFolder(opt.images));
       input = "images " + opt.images;
     } else {
       frames = readBag(opt.bag, opt.topic);
@@ -334,22 +356,44 @@ int main(int argc, char** argv) {
     }
     fs::create_directories(opt.output);
     const fs::path out = opt.output;
-    const std::vector<Method> all = methods();
+    const std::vector<Method> all = methods(opt.budgets);
 
-    // Per frame (Figure 7 / Table 4) and the means (Table 2).
+    // Per frame (Figure 7 / Table 4) and the means (Table 2). A frame on which a method fails (one
+    // pixel wide, say) is reported and left out for every method, so that all compare the same frames.
     std::vector<std::vector<Features>> features(all.size());
-    std::ofstream per_frame(out / "frames.csv");
+    CsvFile per_frame_file(out / "frames.csv");
+    std::ofstream& per_frame = per_frame_file.out();
     per_frame << "frame,stamp,method,budget,keypoints,ms\n";
+    std::vector<Frame> kept;
+    int skipped = 0;
     for (size_t i = 0; i < frames.size(); ++i) {
       progress("extracting", i, frames.size());
+      std::vector<Features> f(all.size());
+      try {
+        for (size_t m = 0; m < all.size(); ++m) {
+          f[m] = extractTimed(all[m], frames[i].gray);
+        }
+      } catch (const std::exception& e) {
+        std::cerr << "\nenhanced_orb_evaluate: skipped " << frames[i].source << " (" << frames[i].gray.cols << " x "
+                  << frames[i].gray.rows << "): " << e.what() << "\n";
+        ++skipped;
+        continue;
+      }
+      kept.push_back(frames[i]);
       for (size_t m = 0; m < all.size(); ++m) {
-        features[m].push_back(extractTimed(all[m], frames[i].gray));
-        per_frame << i << "," << frames[i].stamp << "," << all[m].name << "," << budgetName(all[m].budget) << ","
-                  << features[m].back().keypoints.size() << "," << features[m].back().ms << "\n";
+        per_frame << kept.size() - 1 << "," << frames[i].stamp << "," << all[m].name << "," << budgetName(all[m].budget)
+                  << "," << f[m].keypoints.size() << "," << f[m].ms << "\n";
+        features[m].push_back(std::move(f[m]));
       }
     }
     progress("extracting", frames.size(), frames.size());
-    std::ofstream table2(out / "table2.csv");
+    frames = std::move(kept);
+    if (frames.empty()) {
+      std::cerr << "enhanced_orb_evaluate: no frame could be processed\n";
+      return 1;
+    }
+    CsvFile table2_file(out / "table2.csv");
+    std::ofstream& table2 = table2_file.out();
     table2 << "method,budget,frames,keypoints,ms\n";
     for (size_t m = 0; m < all.size(); ++m) {
       double kp = 0.0, ms = 0.0;
@@ -394,7 +438,8 @@ int main(int argc, char** argv) {
       }
     }
     progress("photometric changes", sampled.size(), sampled.size());
-    std::ofstream figure6(out / "figure6.csv");
+    CsvFile figure6_file(out / "figure6.csv");
+    std::ofstream& figure6 = figure6_file.out();
     figure6 << "method,budget,change,value,frames,keypoints,ms,matches,correct,accuracy,repeatability\n";
     for (const auto& [key, s] : sums) {
       const auto [m, c] = key;
@@ -405,19 +450,27 @@ int main(int argc, char** argv) {
     }
 
     // Frame pairs some steps apart (Table 3): epipolar ground truth from the dataset's poses.
-    std::ofstream pairs(out / "pairs.csv");
-    pairs << "method,budget,steps,pairs,matches,correct,accuracy\n";
+    CsvFile pairs_file(out / "pairs.csv");
+    std::ofstream& pairs = pairs_file.out();
+    pairs << "method,budget,steps,pairs,static_excluded,matches,correct,accuracy\n";
     if (camera && trajectory) {
       for (int step : opt.steps) {
         std::vector<std::pair<size_t, ev::GroundTruth>> judged;
+        int static_pairs = 0;  // no motion: the epipolar test says nothing, so they are not scored
         for (size_t i = 0; i + step < frames.size(); i += opt.pair_every) {
           const auto p1 = trajectory->at(frames[i].stamp);
           const auto p2 = trajectory->at(frames[i + step].stamp);
-          if (p1 && p2) {
+          if (p1 && p2 && ev::isStatic(ev::groundTruthPose(*camera, *p1, *camera, *p2))) {
+            ++static_pairs;
+          } else if (p1 && p2) {
             judged.emplace_back(i, ev::epipolar(*camera, *p1, *p2));
           }
         }
-        for (size_t m = 0; m < all.size() && !judged.empty(); ++m) {
+        if (static_pairs > 0) {
+          std::cerr << "enhanced_orb_evaluate: " << static_pairs << " frame pairs +" << step
+                    << " without motion (under 2 cm) are not scored\n";
+        }
+        for (size_t m = 0; m < all.size(); ++m) {
           progress("pairs +" + std::to_string(step) + " " + all[m].name, m, all.size());
           long matches = 0, correct = 0;
           for (const auto& [i, truth] : judged) {
@@ -428,9 +481,10 @@ int main(int argc, char** argv) {
             matches += counts.matches;
             correct += counts.correct;
           }
+          const double n = std::max<size_t>(1, judged.size());
           pairs << all[m].name << "," << budgetName(all[m].budget) << "," << step << "," << judged.size() << ","
-                << static_cast<double>(matches) / judged.size() << "," << static_cast<double>(correct) / judged.size()
-                << "," << (matches ? static_cast<double>(correct) / matches : 0.0) << "\n";
+                << static_pairs << "," << matches / n << "," << correct / n << ","
+                << (matches ? static_cast<double>(correct) / matches : 0.0) << "\n";
         }
         progress("pairs +" + std::to_string(step), 1, 1);
       }
@@ -438,16 +492,22 @@ int main(int argc, char** argv) {
       std::cerr << "enhanced_orb_evaluate: no ground-truth poses and calibration: frame pairs skipped\n";
     }
 
-    std::ofstream meta(out / "meta.csv");
+    CsvFile meta_file(out / "meta.csv");
+    std::ofstream& meta = meta_file.out();
     meta << "key,value\n"
          << "input," << input << "\n"
          << "frames," << frames.size() << "\n"
+         << "frames skipped," << skipped << "\n"
          << "size," << frames[0].gray.cols << "x" << frames[0].gray.rows << "\n"
          << "photometric frames," << sampled.size() << " (every " << opt.every << ")\n"
          << "cpu," << cpuModel() << "\n"
          << "cores," << cv::getNumberOfCPUs() << "\n"
          << "opencv," << CV_VERSION << "\n";
-    std::cout << "enhanced_orb_evaluate: " << frames.size() << " frames; wrote " << out.string() << "/{frames,table2,"
+    for (CsvFile* f : {&per_frame_file, &table2_file, &figure6_file, &pairs_file, &meta_file}) {
+      f->commit();  // only now do the results replace any earlier ones
+    }
+    std::cout << "enhanced_orb_evaluate: " << frames.size() << " frames (" << skipped << " skipped); wrote "
+              << out.string() << "/{frames,table2,"
               << "figure6,pairs,meta}.csv\n";
   } catch (const std::exception& e) {
     std::cerr << "\nenhanced_orb_evaluate: " << e.what() << "\n";

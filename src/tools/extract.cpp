@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "enhanced_orb/draw.h"
+#include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/orb_extractor.h"
 
 namespace fs = std::filesystem;
@@ -36,6 +37,8 @@ options:
   --no-enhance           skip the enhancement, keep the adaptive threshold
   --save-enhanced        also write DIR/<stem>_enhanced.png
   --save-annotated       also write DIR/<stem>_annotated.png
+  --max-pixels N         refuse images larger than N pixels (default 33554432 = 32 Mpixel, as the
+                         nodelets), read from the file header before decoding where the format allows
   -h, --help             this text
 parameters (README "Parameters" gives each one's meaning, default and range):
   --max-features N  --candidate-ratio X  --n-levels N  --scale-factor X
@@ -44,7 +47,12 @@ parameters (README "Parameters" gives each one's meaning, default and range):
   --grid-size N  --threshold-scale X  --c-min N  --threshold-mode adaptive|fixed  --fast-threshold N
 A value must be a whole number of the parameter's type and lie in its range; when an option is
 repeated, the last one wins.
-exit codes: 0 every image done, 1 an image could not be read or written, 2 bad arguments.
+Outputs never collide: two images with the same stem (a/x.png, b/x.png) are refused before
+anything is written, as is an output that would overwrite an input. Each file is written under a
+temporary name and renamed when complete. An image that cannot be read, or is too large, is
+reported and skipped; the others are processed.
+exit codes: 0 every image done, 1 an image was skipped or an output could not be written,
+2 bad arguments (nothing written).
 )";
 
 struct Options {
@@ -53,6 +61,7 @@ struct Options {
   bool no_enhance = false;
   bool save_enhanced = false;
   bool save_annotated = false;
+  long long max_pixels = enhanced_orb::evaluation::kMaxPixels;
   std::string output;
   std::vector<std::string> images;
 };
@@ -84,6 +93,14 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
       const std::string value = argv[++i];
       if (arg == "--output") {
         opt.output = value;
+      } else if (arg == "--max-pixels") {
+        std::istringstream in(value);
+        long long n = 0;
+        in >> n;
+        if (in.fail() || !in.eof() || n < 1) {
+          return "invalid value for --max-pixels: '" + value + "' (a positive whole number)";
+        }
+        opt.max_pixels = n;
       } else if (arg != "--preset") {
         std::string name = arg.substr(2);
         std::replace(name.begin(), name.end(), '-', '_');
@@ -143,10 +160,11 @@ cv::Mat keypointMatrix(const std::vector<cv::KeyPoint>& keypoints) {
   return m;
 }
 
-void writeResult(const fs::path& file, const Extraction& r) {
-  cv::FileStorage fs(file.string(), cv::FileStorage::WRITE);
+void writeResult(const fs::path& path, const Extraction& r) {
+  enhanced_orb::evaluation::AtomicFile file(path.string());
+  cv::FileStorage fs(file.temporary(), cv::FileStorage::WRITE);
   if (!fs.isOpened()) {
-    throw std::runtime_error("cannot write " + file.string());
+    throw std::runtime_error("cannot write " + path.string());
   }
   fs << "keypoints" << keypointMatrix(r.keypoints);
   fs << "descriptors" << r.descriptors;
@@ -156,12 +174,47 @@ void writeResult(const fs::path& file, const Extraction& r) {
   fs << "inverted" << static_cast<int>(r.inverted);
   fs << "enhance_ms" << r.timings.enhance_ms;
   fs << "extract_ms" << r.timings.extractMs();
+  fs.release();
+  file.commit();
 }
 
-void writeImage(const fs::path& file, const cv::Mat& image) {
-  if (!cv::imwrite(file.string(), image)) {
-    throw std::runtime_error("cannot write " + file.string());
+void writeImage(const fs::path& path, const cv::Mat& image) {
+  enhanced_orb::evaluation::AtomicFile file(path.string());
+  if (!cv::imwrite(file.temporary(), image)) {
+    throw std::runtime_error("cannot write " + path.string());
   }
+  file.commit();
+}
+
+// The files each image writes; an error when two images would write the same file or an output
+// would overwrite an input. Checked before anything is written.
+std::string planOutputs(const Options& opt, std::vector<fs::path>& stems) {
+  std::map<std::string, std::string> writer;  // output file -> image
+  for (const std::string& image : opt.images) {
+    const fs::path stem = fs::path(opt.output) / fs::path(image).stem();
+    std::vector<std::string> files{stem.string() + ".yml"};
+    if (opt.save_enhanced) {
+      files.push_back(stem.string() + "_enhanced.png");
+    }
+    if (opt.save_annotated) {
+      files.push_back(stem.string() + "_annotated.png");
+    }
+    for (const std::string& file : files) {
+      const std::string key = fs::weakly_canonical(file).string();
+      if (auto it = writer.find(key); it != writer.end() && it->second != image) {
+        return image + " and " + it->second + " would both write " + file +
+               ": give the images different names or run once per folder";
+      }
+      writer[key] = image;
+      for (const std::string& input : opt.images) {
+        if (enhanced_orb::evaluation::sameFile(input, file)) {
+          return "the output " + file + " would overwrite the input " + input;
+        }
+      }
+    }
+    stems.push_back(stem);
+  }
+  return "";
 }
 
 }  // namespace
@@ -179,19 +232,27 @@ int main(int argc, char** argv) {
     std::cerr << "enhanced_orb_extract: " << error << "\n\n" << kUsage;
     return 2;
   }
+  std::vector<fs::path> stems;
+  const std::string clash = planOutputs(opt, stems);
+  if (!clash.empty()) {
+    std::cerr << "enhanced_orb_extract: " << clash << "; nothing written\n";
+    return 2;
+  }
   try {
     fs::create_directories(opt.output);
     const enhanced_orb::OrbExtractor extractor(opt.params);
     int failures = 0;
-    for (const std::string& path : opt.images) {
-      const cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    for (size_t i = 0; i < opt.images.size(); ++i) {
+      const std::string& path = opt.images[i];
+      std::string error;
+      const cv::Mat gray = enhanced_orb::evaluation::readGrayChecked(path, opt.max_pixels, error);
       if (gray.empty()) {
-        std::cerr << "enhanced_orb_extract: cannot read image '" << path << "'\n";
+        std::cerr << "enhanced_orb_extract: skipped " << error << "\n";
         ++failures;
         continue;
       }
       const Extraction r = extractor.extract(gray);
-      const fs::path stem = fs::path(opt.output) / fs::path(path).stem();
+      const fs::path& stem = stems[i];
       writeResult(stem.string() + ".yml", r);
       if (opt.save_enhanced) {
         writeImage(stem.string() + "_enhanced.png", r.image);

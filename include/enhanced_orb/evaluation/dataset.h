@@ -21,6 +21,21 @@ struct DatasetError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// One line of a CSV file: its number (from 1) and its comma-separated fields, trimmed of spaces.
+struct CsvRow {
+  int line = 0;
+  std::vector<std::string> fields;
+};
+
+// The rows of a CSV file, '#' comment lines and empty lines skipped. Throws DatasetError when the
+// file is missing or is not a file.
+std::vector<CsvRow> readCsv(const std::string& file);
+
+// Field `column` of `row` as a whole number / a finite number; throws DatasetError naming the file,
+// the line, the field's name and its text when it is not one.
+std::int64_t csvInteger(const std::string& file, const CsvRow& row, size_t column, const std::string& name);
+double csvNumber(const std::string& file, const CsvRow& row, size_t column, const std::string& name);
+
 // One image of a camera stream: its file and timestamp [ns] (0 when unknown).
 struct FrameRef {
   std::string path;

@@ -1,0 +1,248 @@
+// The command-line tools as a user runs them: outputs that would collide or overwrite an input are
+// refused before anything is written, oversized images are refused from their header, one bad
+// frame is skipped, static frame pairs are excluded, errors name file, line and value, and nothing
+// half-written is left behind.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "test_images.h"
+
+namespace fs = std::filesystem;
+namespace test = enhanced_orb::test;
+
+namespace {
+
+struct Outcome {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Outcome run(const std::string& command) {
+  Outcome r;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) {
+    return r;
+  }
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) {
+    r.output += buffer.data();
+  }
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class Tools : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("enhanced_orb_tools_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string image(const std::string& relative, cv::Size size = cv::Size(160, 120)) {
+    const fs::path path = dir_ / relative;
+    fs::create_directories(path.parent_path());
+    cv::imwrite(path.string(), test::syntheticScene(size, 20));
+    return path.string();
+  }
+  // A PNG whose header announces width x height, with no pixel data behind it.
+  std::string pngHeader(const std::string& relative, std::uint32_t width, std::uint32_t height) {
+    const fs::path path = dir_ / relative;
+    std::ofstream out(path, std::ios::binary);
+    const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    out.write(reinterpret_cast<const char*>(sig), 8);
+    const unsigned char ihdr[8] = {0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    out.write(reinterpret_cast<const char*>(ihdr), 8);
+    for (std::uint32_t v : {width, height}) {
+      const unsigned char be[4] = {static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16),
+                                   static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v)};
+      out.write(reinterpret_cast<const char*>(be), 4);
+    }
+    const unsigned char rest[5] = {8, 0, 0, 0, 0};
+    out.write(reinterpret_cast<const char*>(rest), 5);
+    return path.string();
+  }
+  // A small ASL sequence: cam0 with `frames` images, imu0 with two samples; `csv_line` replaces
+  // the cam0 data.csv content when given.
+  fs::path asl(int frames, const std::string& csv = "") {
+    const fs::path mav0 = dir_ / "seq" / "mav0";
+    fs::create_directories(mav0 / "cam0" / "data");
+    fs::create_directories(mav0 / "imu0");
+    std::ofstream list(mav0 / "cam0" / "data.csv");
+    list << "#timestamp [ns],filename\n";
+    for (int i = 0; i < frames; ++i) {
+      const std::string name = std::to_string(1000 + i) + ".png";
+      cv::imwrite((mav0 / "cam0" / "data" / name).string(), test::syntheticScene(cv::Size(160, 120), i));
+      if (csv.empty()) {
+        list << 1000 + i << "," << name << "\n";
+      }
+    }
+    list << csv;
+    std::ofstream imu(mav0 / "imu0" / "data.csv");
+    imu << "#timestamp,w_x,w_y,w_z,a_x,a_y,a_z\n1000,0,0,0,0,0,9.8\n1001,0,0,0,0,0,9.8\n";
+    return mav0.parent_path();
+  }
+  std::string quoted(const fs::path& p) const { return "'" + p.string() + "'"; }
+
+  fs::path dir_;
+};
+
+const std::string kExtract = ENHANCED_ORB_EXTRACT_TOOL;
+const std::string kEvaluate = ENHANCED_ORB_EVALUATE_TOOL;
+const std::string kEurocToBag = ENHANCED_ORB_EUROC_TO_BAG_TOOL;
+
+}  // namespace
+
+TEST_F(Tools, ExtractRefusesCollidingOutputsBeforeWritingAnything) {
+  const std::string a = image("a/x.png"), b = image("b/x.png"), c = image("x.jpg");
+  const Outcome r = run(kExtract + " " + a + " " + b + " " + c + " --output " + quoted(dir_ / "out"));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("would both write"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "x.yml"));
+}
+
+TEST_F(Tools, ExtractRefusesToOverwriteAnInput) {
+  const std::string x = image("d/x.png"), xe = image("d/x_enhanced.png");
+  const auto before = fs::file_size(xe);
+  const Outcome r = run(kExtract + " --save-enhanced " + x + " " + xe + " --output " + quoted(dir_ / "d"));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("would overwrite the input"), std::string::npos) << r.output;
+  EXPECT_EQ(fs::file_size(xe), before);
+}
+
+TEST_F(Tools, ExtractRefusesOversizedImagesFromTheHeaderAndGoesOn) {
+  const std::string huge = pngHeader("huge.png", 16000, 16000);
+  const std::string good = image("good.png");
+  Outcome r = run(kExtract + " " + huge + " " + good + " --output " + quoted(dir_ / "out"));
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("16000 x 16000"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "good.yml"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "huge.yml"));
+  r = run(kExtract + " --max-pixels 100 " + good + " --output " + quoted(dir_ / "small"));
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("160 x 120"), std::string::npos) << r.output;
+  for (const auto& entry : fs::directory_iterator(dir_ / "out")) {
+    EXPECT_EQ(entry.path().filename().string().find(".part"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(Tools, ExtractOptionParsing) {
+  const std::string good = image("good.png");
+  const std::string tail = " " + good + " --output " + quoted(dir_ / "out");
+  for (const char* bad : {"--c-min nan", "--alpha inf", "--alpha -0.5", "--max-features 1e9", "--c-min 12.5",
+                          "--max-features 200000", "--preset fast", "--no-such-option 1", "--max-pixels 0"}) {
+    const Outcome r = run(kExtract + " " + bad + tail);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "good.yml")) << bad;
+  }
+  // A repeated option: the last one wins.
+  auto count = [](const std::string& out) { return std::stoi(out.substr(out.find(": ") + 2)); };
+  const Outcome last = run(kExtract + " --max-features 50 --max-features 20" + tail);
+  const Outcome once = run(kExtract + " --max-features 20" + tail);
+  const Outcome fifty = run(kExtract + " --max-features 50" + tail);
+  ASSERT_EQ(last.code, 0) << last.output;
+  EXPECT_EQ(count(last.output), count(once.output)) << last.output << once.output;
+  EXPECT_LT(count(last.output), count(fifty.output)) << last.output << fifty.output;
+  const Outcome help = run(kExtract + " --help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.output.find("exit codes"), std::string::npos);
+}
+
+TEST_F(Tools, EvaluateSkipsOneBadFrameAndKeepsTheRest) {
+  for (int i = 0; i < 3; ++i) {
+    image("frames/f" + std::to_string(i) + ".png");
+  }
+  image("frames/f9_thin.png", cv::Size(1, 60));
+  const Outcome r = run(kEvaluate + " --images " + quoted(dir_ / "frames") + " --every 1 --budgets 1000 --output " +
+                        quoted(dir_ / "out"));
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("f9_thin.png"), std::string::npos) << r.output;
+  std::ifstream frames(dir_ / "out" / "frames.csv");
+  int rows = 0;
+  for (std::string line; std::getline(frames, line);) {
+    ++rows;
+  }
+  EXPECT_EQ(rows, 1 + 3 * 3);  // header, 3 frames x 3 methods
+}
+
+TEST_F(Tools, EvaluateExcludesPairsWithoutMotion) {
+  if (!fs::exists(test::eurocDir() + "/mav0/state_groundtruth_estimate0/data.csv")) {
+    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir();
+  }
+  const Outcome r = run(kEvaluate + " --euroc " + test::eurocDir() + " --max-frames 40 --every 100 --steps 1 " +
+                        "--pair-every 5 --budgets 1000 --output " + quoted(dir_ / "out"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream pairs(dir_ / "out" / "pairs.csv");
+  std::string header, row;
+  std::getline(pairs, header);
+  ASSERT_NE(header.find("static_excluded"), std::string::npos) << header;
+  ASSERT_TRUE(static_cast<bool>(std::getline(pairs, row)));
+  // method,budget,steps,pairs,static_excluded,...: the excerpt's camera is static.
+  std::stringstream fields(row);
+  std::string method, budget, steps, scored, excluded;
+  std::getline(fields, method, ',');
+  std::getline(fields, budget, ',');
+  std::getline(fields, steps, ',');
+  std::getline(fields, scored, ',');
+  std::getline(fields, excluded, ',');
+  EXPECT_GT(std::stoi(excluded), 0) << row;
+  EXPECT_EQ(row.find("nan"), std::string::npos) << row;
+}
+
+TEST_F(Tools, EurocToBagAcceptsSpacesAndCountsImages) {
+  const fs::path seq = asl(3);
+  fs::path csv = seq / "mav0" / "cam0" / "data.csv";
+  std::ofstream(csv) << "#timestamp [ns], filename\n1000, 1000.png\n1001, 1001.png\n1002, 1002.png\n";
+  const Outcome r = run(kEurocToBag + " " + quoted(seq) + " " + quoted(dir_ / "out.bag"));
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("/cam0/image_raw: 3 images"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out.bag"));
+}
+
+TEST_F(Tools, EurocToBagNamesTheFileLineAndValueAndLeavesNoPartialBag) {
+  const fs::path seq = asl(2, "1003,\n");
+  std::ofstream(seq / "mav0" / "cam0" / "data.csv") << "#t,f\n1000,1000.png\nabc,1001.png\n";
+  Outcome r = run(kEurocToBag + " " + quoted(seq) + " " + quoted(dir_ / "out.bag"));
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("data.csv:3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'abc'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out.bag"));
+  // Images fine, IMU broken after them: still no bag, and no temporary file.
+  std::ofstream(seq / "mav0" / "cam0" / "data.csv") << "#t,f\n1000,1000.png\n1001,1001.png\n";
+  std::ofstream(seq / "mav0" / "imu0" / "data.csv") << "#t\n1000,0,0,0,0,0,9.8\n1001,0,0,x,0,0,9.8\n";
+  r = run(kEurocToBag + " " + quoted(seq) + " " + quoted(dir_ / "out.bag"));
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("imu0/data.csv:3"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out.bag"));
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(entry.path().filename().string().find(".part"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(Tools, EurocToBagRefusesADirectoryAsDataCsvAndAnOutputThatIsAnInput) {
+  fs::path seq = asl(2);
+  const fs::path input = seq / "mav0" / "cam0" / "data" / "1000.png";
+  const auto before = fs::file_size(input);
+  Outcome r = run(kEurocToBag + " " + quoted(seq) + " " + quoted(input));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(fs::file_size(input), before);
+  fs::remove(seq / "mav0" / "cam0" / "data.csv");
+  fs::create_directories(seq / "mav0" / "cam0" / "data.csv");
+  r = run(kEurocToBag + " " + quoted(seq) + " " + quoted(dir_ / "out.bag"));
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("is not a file"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out.bag"));
+}
