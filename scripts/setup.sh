@@ -21,6 +21,7 @@ PACKAGES=(
   python3-rosservice python3-rosparam python3-rosbag python3-rostest librostest-dev
   image-transport-tools libnodeletlib-tools python3-rospy python3-sensor-msgs python3-std-msgs
   python3-numpy python3-opencv python3-cv-bridge python3-matplotlib python3-diagnostic-msgs
+  python3-tf2-msgs python3-geometry-msgs
   # demo data, viewer, checks
   visp-images-data rviz xvfb xauth clang-format catkin-lint
   # fuzzing and sanitizers

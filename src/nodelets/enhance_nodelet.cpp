@@ -177,9 +177,9 @@ private:
       gray.copyTo(view);
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    publishStatus(msg->header, gray, params, enabled, result, ms);  // first: the extractor looks it up by stamp
     pub_.publish(out);
     publishAddress(address_pub_, *out);
-    publishStatus(msg->header, gray, params, enabled, result, ms);
   }
 
   void publishStatus(const std_msgs::Header& header, const cv::Mat& gray, const EnhanceParams& params, bool enabled,
