@@ -98,6 +98,17 @@ void ImageNodelet::checkStarted() {
 
 void ImageNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
   ever_received_ = true;
+  {
+    // Frames lost before this callback (a full input queue, a slow link) show as gaps in
+    // header.seq, where the publisher numbers its messages (drivers and rosbag do).
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    const std::uint32_t seq = msg->header.seq;
+    if (last_seq_ && seq > *last_seq_ + 1) {
+      dropped_ += seq - *last_seq_ - 1;
+      dropped_total_ += seq - *last_seq_ - 1;
+    }
+    last_seq_ = seq;
+  }
   const GrayImage input = toGrayImage(msg);
   if (!input.error.empty()) {
     warnThrottled(input.reason, input.error);
@@ -167,12 +178,16 @@ void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("max processing time [ms]", max_ms_);
   status.add("frames rejected (bad input)", rejected_);
   status.add("frames failed", failed_);
+  status.add("input frames missed (header.seq gaps)", dropped_);
+  status.add("input frames missed since start", dropped_total_);
   status.add("input subscribed", subscribed);
   addDiagnostics(status);
   if (failed_ > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "processing failed on some frames");
   } else if (rejected_ > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "some input frames were rejected");
+  } else if (dropped_ > 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "input frames were missed (queue full or link slow)");
   } else if (!subscribed) {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "idle: no subscriber on the outputs");
   } else {
@@ -180,6 +195,7 @@ void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   }
   window_start_ = now;
   processed_ = rejected_ = failed_ = 0;
+  dropped_ = 0;
   total_ms_ = max_ms_ = 0.0;
 }
 

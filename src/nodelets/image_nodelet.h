@@ -4,9 +4,11 @@
 #define ENHANCED_ORB_IMAGE_NODELET_H
 
 #include <atomic>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -93,6 +95,9 @@ private:
   int processed_ = 0;
   int rejected_ = 0;
   int failed_ = 0;
+  std::uint64_t dropped_ = 0;  // header.seq gaps in this period
+  std::uint64_t dropped_total_ = 0;
+  std::optional<std::uint32_t> last_seq_;
   double total_ms_ = 0.0;
   double max_ms_ = 0.0;
 };
