@@ -139,17 +139,25 @@ std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tile
   cv::magnitude(gx, gy, weight);
   cv::sqrt(weight, weight);
   std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
-  std::vector<int> tile_of_x(f.cols);
-  for (int x = 0; x < f.cols; ++x) {
-    tile_of_x[x] = std::min(tiles - 1, x * tiles / f.cols);
+  // Tile boundaries along x, so that each row is walked tile by tile without a per-pixel lookup.
+  std::vector<int> x_end(tiles);
+  for (int x = 0, t = 0; t < tiles; ++t) {
+    while (x < f.cols && x * tiles / f.cols == t) {
+      ++x;
+    }
+    x_end[t] = x;
   }
   for (int y = 0; y < f.rows; ++y) {
     const float* fr = f.ptr<float>(y);
     const float* wr = weight.ptr<float>(y);
     WeightedHistogram* row_tiles = &histograms[static_cast<size_t>(std::min(tiles - 1, y * tiles / f.rows)) * tiles];
-    for (int x = 0; x < f.cols; ++x) {
-      const int bin = std::clamp(static_cast<int>(std::lround(fr[x])), 0, 255);
-      row_tiles[tile_of_x[x]][bin] += wr[x];
+    for (int t = 0, x = 0; t < tiles; ++t) {
+      WeightedHistogram& h = row_tiles[t];
+      for (; x < x_end[t]; ++x) {
+        // round(f): f >= 0 (a blur of an 8-bit image), rounded half up in double as std::lround does.
+        const int bin = std::min(255, std::max(0, static_cast<int>(static_cast<double>(fr[x]) + 0.5)));
+        h[bin] += wr[x];
+      }
     }
   }
   return histograms;
@@ -165,11 +173,6 @@ cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int
       curves[t][2 * i + 1] = i < 255 ? luts[t][i + 1] - luts[t][i] : 0.0f;
     }
   }
-  auto read = [&curves](size_t t, float v) {
-    const float c = std::clamp(v, 0.0f, 255.0f);
-    const int i = std::min(254, static_cast<int>(c));
-    return curves[t][2 * i] + (c - static_cast<float>(i)) * curves[t][2 * i + 1];
-  };
   // Tile centres at (k + 1/2) of a tile; pixels beyond the outer centres use the nearest curves.
   auto neighbours = [tiles](int pos, int length, int& k0, int& k1, float& w1) {
     const float g = (pos + 0.5f) * tiles / length - 0.5f;
@@ -189,10 +192,17 @@ cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int
     neighbours(y, f.rows, y0, y1, wy);
     const float* fr = f.ptr<float>(y);
     float* o = out.ptr<float>(y);
+    const std::array<float, 512>* top_row = &curves[static_cast<size_t>(y0) * tiles];
+    const std::array<float, 512>* bottom_row = &curves[static_cast<size_t>(y1) * tiles];
     for (int x = 0; x < f.cols; ++x) {
-      const float v = fr[x];
-      const float top = (1.0f - wx[x]) * read(y0 * tiles + x0[x], v) + wx[x] * read(y0 * tiles + x1[x], v);
-      const float bottom = (1.0f - wx[x]) * read(y1 * tiles + x0[x], v) + wx[x] * read(y1 * tiles + x1[x], v);
+      // Each curve read at f by linear interpolation between levels: the level and the fraction
+      // are the same for the four curves.
+      const float c = std::clamp(fr[x], 0.0f, 255.0f);
+      const int i = std::min(254, static_cast<int>(c));
+      const float frac = c - static_cast<float>(i);
+      auto read = [i, frac](const std::array<float, 512>& curve) { return curve[2 * i] + frac * curve[2 * i + 1]; };
+      const float top = (1.0f - wx[x]) * read(top_row[x0[x]]) + wx[x] * read(top_row[x1[x]]);
+      const float bottom = (1.0f - wx[x]) * read(bottom_row[x0[x]]) + wx[x] * read(bottom_row[x1[x]]);
       o[x] = (1.0f - wy) * top + wy * bottom;
     }
   }
