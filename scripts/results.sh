@@ -22,8 +22,6 @@ start=$(date +%s)
 echo "results: equal budgets on $LIGHTING and $EUROC"
 COMPARE=$(mktemp -d)
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --lighting "$LIGHTING" --euroc "$EUROC" --output "$COMPARE"
-python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
-rm -rf "$COMPARE"
 
 echo "results: evaluation on $EUROC"
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_evaluate" --euroc "$EUROC" --output "$OUT" --every 19
@@ -50,8 +48,10 @@ BAG=$(mktemp -d)/euroc.bag
 export ROS_HOME=$(mktemp -d)
 roslaunch enhanced_orb pipeline.launch >"$ROS_HOME/pipeline.log" 2>&1 &
 LAUNCH=$!
-trap 'kill -INT $LAUNCH 2>/dev/null || true; wait $LAUNCH 2>/dev/null || true; rm -rf "$(dirname "$BAG")"' EXIT
+trap 'kill -INT $LAUNCH 2>/dev/null || true; wait $LAUNCH 2>/dev/null || true; rm -rf "$(dirname "$BAG")" "$COMPARE"' EXIT
 python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv"
 
 python3 "$ROOT/scripts/results.py" "$OUT"
+python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
+rm -rf "$COMPARE"
 echo "results: done in $(( $(date +%s) - start )) s"
