@@ -2,6 +2,10 @@
 #ifndef ENHANCED_ORB_ADAPTIVE_THRESHOLD_H
 #define ENHANCED_ORB_ADAPTIVE_THRESHOLD_H
 
+#include <array>
+#include <cstdint>
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "enhanced_orb/params.h"
@@ -12,17 +16,30 @@ namespace enhanced_orb {
 // likewise in y. Cells of an image smaller than the grid may be empty.
 cv::Rect gridCell(cv::Size size, int grid_size, int cx, int cy);
 
-// Eqs 21-32: the Otsu threshold t of an 8-bit cell (maximal between-class variance, ties to the
-// smallest t), as cv::threshold's THRESH_OTSU computes it. 0 for an empty or constant cell.
+using CellHistogram = std::array<std::uint32_t, 256>;
+
+// Eqs 21-32: the Otsu threshold t of a histogram (maximal between-class variance, ties to the
+// smallest t), in the floating-point steps of cv::threshold's THRESH_OTSU, so that both give the
+// same t. 0 for an empty or constant histogram.
+int otsuThreshold(const CellHistogram& histogram);
+
+// The same of an 8-bit cell, through cv::threshold: the reference the histogram path is tested against.
 int otsuThreshold(const cv::Mat& cell);
+
+// The histograms of every cell of a grid_size x grid_size grid (row-major), in one pass over the image.
+std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size);
 
 // I_mid: the cell's centre pixel, local (rows/2, cols/2).
 int centreValue(const cv::Mat& cell);
 
-// Eqs 33-34: max(c_min, lround(threshold_scale |I_mid - t|)) of one cell; c_min for an empty cell.
+// Eqs 33-34: max(c_min, lround(threshold_scale |I_mid - t|)).
+int truncatedThreshold(int i_mid, int otsu, const ThresholdParams& params);
+
+// Eqs 33-34 of one cell (Otsu through cv::threshold); c_min for an empty cell.
 int cellThreshold(const cv::Mat& cell, const ThresholdParams& params);
 
-// The grid_size x grid_size (CV_32S, row-major: row = cy) FAST thresholds of an 8-bit image.
+// The grid_size x grid_size (CV_32S, row-major: row = cy) FAST thresholds of an 8-bit image, from
+// one histogram pass (cellHistograms); equal to cellThreshold() of every cell.
 cv::Mat cellThresholds(const cv::Mat& image, const ThresholdParams& params);
 
 }  // namespace enhanced_orb

@@ -1,5 +1,7 @@
 #include "enhanced_orb/adaptive_threshold.h"
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -17,6 +19,82 @@ cv::Rect gridCell(cv::Size size, int grid_size, int cx, int cy) {
   return cv::Rect(x0, y0, edge(size.width, cx + 1) - x0, edge(size.height, cy + 1) - y0);
 }
 
+int otsuThreshold(const CellHistogram& histogram) {
+  double n = 0.0;
+  double mu = 0.0;  // eq 23: the mean level mu_T of the whole cell
+  for (int i = 0; i < 256; ++i) {
+    n += histogram[i];
+    mu += i * static_cast<double>(histogram[i]);
+  }
+  if (n == 0.0) {
+    return 0;
+  }
+  const double scale = 1.0 / n;
+  mu *= scale;
+  // Eqs 24-32, one level at a time: omega_0 (q1) and mu_0 (mu1) of the class below t, mu_1 (mu2)
+  // of the class above, and the between-class variance omega_0 omega_1 (mu_0 - mu_1)^2.
+  double q1 = 0.0;
+  double mu1 = 0.0;
+  double max_sigma = 0.0;
+  int best = 0;
+  for (int i = 0; i < 256; ++i) {
+    const double p_i = histogram[i] * scale;  // eq 21
+    mu1 *= q1;
+    q1 += p_i;
+    const double q2 = 1.0 - q1;
+    if (std::min(q1, q2) < FLT_EPSILON || std::max(q1, q2) > 1.0 - FLT_EPSILON) {
+      continue;
+    }
+    mu1 = (mu1 + i * p_i) / q1;
+    const double mu2 = (mu - q1 * mu1) / q2;
+    const double sigma = q1 * q2 * (mu1 - mu2) * (mu1 - mu2);
+    if (sigma > max_sigma) {  // ties keep the smallest t
+      max_sigma = sigma;
+      best = i;
+    }
+  }
+  return best;
+}
+
+std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size) {
+  CV_Assert(image.type() == CV_8UC1 && grid_size >= 1);
+  std::vector<CellHistogram> histograms(static_cast<size_t>(grid_size) * grid_size, CellHistogram{});
+  // Cell edges as gridCell() draws them.
+  std::vector<int> x_edges(grid_size + 1), y_edges(grid_size + 1);
+  for (int k = 0; k < grid_size; ++k) {
+    x_edges[k] = gridCell(image.size(), grid_size, k, 0).x;
+    y_edges[k] = gridCell(image.size(), grid_size, 0, k).y;
+  }
+  x_edges[grid_size] = image.cols;
+  y_edges[grid_size] = image.rows;
+  // Four partial counts per cell, so that runs of equal pixels do not wait on one counter.
+  std::vector<std::array<std::uint32_t, 4 * 256>> partial(histograms.size());
+  for (int cy = 0; cy < grid_size; ++cy) {
+    for (int y = y_edges[cy]; y < y_edges[cy + 1]; ++y) {
+      const std::uint8_t* row = image.ptr<std::uint8_t>(y);
+      for (int cx = 0; cx < grid_size; ++cx) {
+        std::uint32_t* h = partial[static_cast<size_t>(cy) * grid_size + cx].data();
+        int x = x_edges[cx];
+        for (; x + 4 <= x_edges[cx + 1]; x += 4) {
+          ++h[row[x]];
+          ++h[256 + row[x + 1]];
+          ++h[512 + row[x + 2]];
+          ++h[768 + row[x + 3]];
+        }
+        for (; x < x_edges[cx + 1]; ++x) {
+          ++h[row[x]];
+        }
+      }
+    }
+  }
+  for (size_t c = 0; c < histograms.size(); ++c) {
+    for (int i = 0; i < 256; ++i) {
+      histograms[c][i] = partial[c][i] + partial[c][256 + i] + partial[c][512 + i] + partial[c][768 + i];
+    }
+  }
+  return histograms;
+}
+
 int otsuThreshold(const cv::Mat& cell) {
   if (cell.empty()) {
     return 0;
@@ -29,19 +107,31 @@ int centreValue(const cv::Mat& cell) {
   return cell.at<std::uint8_t>(cell.rows / 2, cell.cols / 2);
 }
 
+int truncatedThreshold(int i_mid, int otsu, const ThresholdParams& params) {
+  const double c = params.threshold_scale * std::abs(i_mid - otsu);  // eq 33
+  return std::max(params.c_min, static_cast<int>(std::lround(c)));   // eq 34
+}
+
 int cellThreshold(const cv::Mat& cell, const ThresholdParams& params) {
   if (cell.empty()) {
     return params.c_min;
   }
-  const double c = params.threshold_scale * std::abs(centreValue(cell) - otsuThreshold(cell));  // eq 33
-  return std::max(params.c_min, static_cast<int>(std::lround(c)));                              // eq 34
+  return truncatedThreshold(centreValue(cell), otsuThreshold(cell), params);
 }
 
 cv::Mat cellThresholds(const cv::Mat& image, const ThresholdParams& params) {
   cv::Mat thresholds(params.grid_size, params.grid_size, CV_32S);
+  const std::vector<CellHistogram> histograms = cellHistograms(image, params.grid_size);
   for (int cy = 0; cy < params.grid_size; ++cy) {
     for (int cx = 0; cx < params.grid_size; ++cx) {
-      thresholds.at<int>(cy, cx) = cellThreshold(image(gridCell(image.size(), params.grid_size, cx, cy)), params);
+      const cv::Mat cell = image(gridCell(image.size(), params.grid_size, cx, cy));
+      int& t = thresholds.at<int>(cy, cx);
+      if (cell.empty()) {
+        t = params.c_min;
+        continue;
+      }
+      t = truncatedThreshold(centreValue(cell),
+                             otsuThreshold(histograms[static_cast<size_t>(cy) * params.grid_size + cx]), params);
     }
   }
   return thresholds;

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/adaptive_threshold.h"
+#include "enhanced_orb/orb_extractor.h"
 #include "test_images.h"
 
 using namespace enhanced_orb;
@@ -132,4 +133,35 @@ TEST(CellThresholds, GridShapeAndLowerBound) {
       }
     }
   }
+}
+
+TEST(AdaptiveThreshold, HistogramOtsuEqualsCvThresholdOnEveryCellOfEveryLevel) {
+  std::vector<cv::Mat> images;
+  const cv::Mat frame = test::eurocFrame();
+  images.push_back(frame.empty() ? test::syntheticScene(cv::Size(752, 480), 300) : frame);
+  cv::Mat dark, noisy;
+  images[0].convertTo(dark, CV_8U, 0.2);
+  images.push_back(dark);
+  cv::RNG rng(5);
+  noisy = images[0].clone();
+  rng.fill(noisy, cv::RNG::UNIFORM, 0, 256);
+  images.push_back(noisy);
+  images.push_back(cv::Mat(37, 23, CV_8UC1, cv::Scalar(9)));  // constant, cells of uneven size
+  int cells = 0;
+  for (const cv::Mat& image : images) {
+    for (const cv::Mat& level : buildPyramid(image, 8, 1.2)) {
+      for (int grid : {1, 5, 7}) {
+        const std::vector<CellHistogram> h = cellHistograms(level, grid);
+        for (int cy = 0; cy < grid; ++cy) {
+          for (int cx = 0; cx < grid; ++cx) {
+            const cv::Mat cell = level(gridCell(level.size(), grid, cx, cy));
+            ASSERT_EQ(otsuThreshold(h[static_cast<size_t>(cy) * grid + cx]), otsuThreshold(cell))
+                << "level " << level.size() << " grid " << grid << " cell " << cx << "," << cy;
+            ++cells;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(cells, 1000);
 }
