@@ -54,7 +54,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   p.enhance.alpha = anyDouble(in, 0.0, 1.0);
   p.enhance.tau = anyDouble(in, 0.0, 1.0);
   p.enhance.beta = anyDouble(in, 0.0, 2.0);
-  p.enhance.sharpening = anyDouble(in, 0.0, 5.0);
+  p.enhance.sharpening = anyDouble(in, -1.0, 5.0);
+  p.enhance.tone_curve = in.ConsumeBool() ? eo::ToneCurve::kEqualize : eo::ToneCurve::kGamma;
+  p.enhance.tone_tiles = anyInt(in, 1, 16);
   p.enhance.blur_ksize = anyInt(in, 1, 31);
   p.enhance.blur_sigma = anyDouble(in, 0.1, 10.0);
   p.enhance.std_threshold = anyDouble(in, 0.0, 1.0);
@@ -67,6 +69,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   p.orb.max_features = in.ConsumeBool() ? 0 : anyInt(in, 0, 3000);
   p.orb.n_levels = anyInt(in, 1, 16);
   p.orb.scale_factor = anyDouble(in, 1.01, 2.0);
+  p.orb.candidate_ratio = anyDouble(in, 0.0, 100.0);
 
   const int width = in.ConsumeIntegralInRange(0, 320);
   const int height = in.ConsumeIntegralInRange(0, 240);
