@@ -245,8 +245,25 @@ void ImageNodelet::warnWrongTypes(const std::map<std::string, ParamType>& expect
         break;
     }
     if (!ok) {
-      NODELET_WARN("~%s = %s is not %s; it is ignored and the default is used", name.c_str(), value.toXml().c_str(),
-                   wanted);
+      std::string text;
+      switch (got) {
+        case XmlRpc::XmlRpcValue::TypeString:
+          text = "'" + static_cast<std::string&>(value) + "'";
+          break;
+        case XmlRpc::XmlRpcValue::TypeInt:
+          text = std::to_string(static_cast<int>(value));
+          break;
+        case XmlRpc::XmlRpcValue::TypeDouble:
+          text = std::to_string(static_cast<double>(value));
+          break;
+        case XmlRpc::XmlRpcValue::TypeBoolean:
+          text = static_cast<bool>(value) ? "true" : "false";
+          break;
+        default:
+          text = "a value of another type";
+          break;
+      }
+      NODELET_WARN("~%s = %s is not %s; it is ignored and the default is used", name.c_str(), text.c_str(), wanted);
     }
   }
 }
