@@ -21,8 +21,9 @@ enum class PixelFormat { kMono8, kMono16, kBGR, kRGB, kBGRA, kRGBA };
 // Throws std::invalid_argument when the Mat's type does not match `format`.
 cv::Mat toGray(const cv::Mat& image, PixelFormat format);
 
-// Eq 7: lambda, the standard deviation of the image scaled to [0, 1]. 0 for an empty image.
-double imageLambda(const cv::Mat& gray);
+// Eq 7: lambda, the standard deviation of the image scaled to [0, 1]. 0 for an empty image. With
+// `mean_gray`, also the image's mean, from the same pass.
+double imageLambda(const cv::Mat& gray, double* mean_gray = nullptr);
 
 // Step 3: whether the image counts as poor quality, by `gamma_mode` and the test on lambda.
 bool isPoorQuality(double lambda, const EnhanceParams& params);
@@ -55,6 +56,7 @@ cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int
 struct EnhanceResult {
   cv::Mat image;              // enhanced 8-bit gray image, same size as the input
   double lambda = 0.0;        // eq 7, of the input
+  double mean_gray = 0.0;     // mean of the input
   bool poor_quality = false;  // step 3: the tone curve was applied
   bool inverted = false;      // step 4 (gamma curve only): worked on the negative of a bright poor image
 };

@@ -10,6 +10,7 @@
 #ifndef ENHANCED_ORB_PARAMS_H
 #define ENHANCED_ORB_PARAMS_H
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,10 @@ std::vector<std::string> validate(const Params& p);
 // unknown or the text is not a whole value of the parameter's type; empty on success. Ranges are
 // checked by validate().
 std::string setParam(Params& params, const std::string& name, const std::string& value);
+
+// The value of the parameter `name` as text that setParam() reads back to the same value; nullopt
+// for a name setParam() does not know.
+std::optional<std::string> paramText(const Params& params, const std::string& name);
 
 // The parameters that have no effect under `params`, each with the reason ("std_threshold: only
 // used when gamma_mode is auto"), so that a tool or nodelet can say so when one of them is set.

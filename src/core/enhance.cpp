@@ -53,12 +53,15 @@ cv::Mat toGray(const cv::Mat& image, PixelFormat format) {
   return gray;
 }
 
-double imageLambda(const cv::Mat& gray) {
+double imageLambda(const cv::Mat& gray, double* mean_gray) {
   if (gray.empty()) {
     return 0.0;
   }
   cv::Scalar mean, stddev;
   cv::meanStdDev(gray, mean, stddev);
+  if (mean_gray) {
+    *mean_gray = mean[0];
+  }
   return stddev[0] / 255.0;  // eq 7 on I/255
 }
 
@@ -222,14 +225,14 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
     result.image.create(gray.size(), CV_8UC1);  // as empty as the input (0 x n or n x 0)
     return result;
   }
-  result.lambda = imageLambda(gray);
+  result.lambda = imageLambda(gray, &result.mean_gray);
   result.poor_quality = isPoorQuality(result.lambda, params);
 
   // Step 4: a bright poor image is enhanced as its negative, and turned back at the end. Only the
   // gamma brightens one way; the equalisation treats dark and bright alike.
   const bool gamma_curve = params.tone_curve == ToneCurve::kGamma;
   cv::Mat input;
-  result.inverted = gamma_curve && result.poor_quality && cv::mean(gray)[0] > 128.0;
+  result.inverted = gamma_curve && result.poor_quality && result.mean_gray > 128.0;
   if (result.inverted) {
     cv::bitwise_not(gray, input);  // into a new buffer: the caller's image is never written
   } else {

@@ -1,5 +1,8 @@
 #include "enhanced_orb/params.h"
 
+#include <functional>
+#include <initializer_list>
+#include <optional>
 #include <sstream>
 
 namespace enhanced_orb {
@@ -116,55 +119,90 @@ bool parseBool(const std::string& text, bool& out) {
 
 }  // namespace
 
+namespace {
+
+// A parameter as text: read with parse, written with format. The one list of names the command
+// line, the nodelets' preset seeding and the evaluation tools share.
+struct Field {
+  const char* name;
+  std::function<bool(Params&, const std::string&)> parse;
+  std::function<std::string(const Params&)> format;
+};
+
+template <typename T>
+std::string formatNumber(T value) {
+  std::ostringstream out;
+  out.precision(17);  // doubles survive the round trip through text
+  out << value;
+  return out.str();
+}
+
+// A numeric field reached by `at` (which returns a reference into Params).
+template <typename At>
+Field number(const char* name, At at) {
+  return {name, [at](Params& p, const std::string& v) { return parseWhole(v, at(p)); },
+          [at](const Params& p) { return formatNumber(at(const_cast<Params&>(p))); }};
+}
+
+// A named-enum field.
+template <typename At, typename Parse>
+Field named(const char* name, At at, Parse parse) {
+  return {name, [at, parse](Params& p, const std::string& v) { return parse(v, at(p)); },
+          [at](const Params& p) { return std::string(toString(at(const_cast<Params&>(p)))); }};
+}
+
+const std::vector<Field>& fields() {
+  static const std::vector<Field> all = {
+      {"enhance", [](Params& p, const std::string& v) { return parseBool(v, p.enhance_enabled); },
+       [](const Params& p) { return std::string(p.enhance_enabled ? "true" : "false"); }},
+      named(
+          "tone_curve", [](Params& p) -> ToneCurve& { return p.enhance.tone_curve; }, parseToneCurve),
+      number("tone_tiles", [](Params& p) -> int& { return p.enhance.tone_tiles; }),
+      number("alpha", [](Params& p) -> double& { return p.enhance.alpha; }),
+      number("tau", [](Params& p) -> double& { return p.enhance.tau; }),
+      number("beta", [](Params& p) -> double& { return p.enhance.beta; }),
+      number("sharpening", [](Params& p) -> double& { return p.enhance.sharpening; }),
+      number("blur_ksize", [](Params& p) -> int& { return p.enhance.blur_ksize; }),
+      number("blur_sigma", [](Params& p) -> double& { return p.enhance.blur_sigma; }),
+      number("std_threshold", [](Params& p) -> double& { return p.enhance.std_threshold; }),
+      named(
+          "gamma_mode", [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode),
+      number("grid_size", [](Params& p) -> int& { return p.threshold.grid_size; }),
+      number("threshold_scale", [](Params& p) -> double& { return p.threshold.threshold_scale; }),
+      number("c_min", [](Params& p) -> int& { return p.threshold.c_min; }),
+      named(
+          "threshold_mode", [](Params& p) -> ThresholdMode& { return p.orb.threshold_mode; }, parseThresholdMode),
+      number("fast_threshold", [](Params& p) -> int& { return p.orb.fast_threshold; }),
+      number("max_features", [](Params& p) -> int& { return p.orb.max_features; }),
+      number("candidate_ratio", [](Params& p) -> double& { return p.orb.candidate_ratio; }),
+      number("n_levels", [](Params& p) -> int& { return p.orb.n_levels; }),
+      number("scale_factor", [](Params& p) -> double& { return p.orb.scale_factor; }),
+  };
+  return all;
+}
+
+const Field* findField(const std::string& name) {
+  for (const Field& f : fields()) {
+    if (name == f.name) {
+      return &f;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 std::string setParam(Params& p, const std::string& name, const std::string& value) {
-  EnhanceParams& e = p.enhance;
-  ThresholdParams& t = p.threshold;
-  OrbParams& o = p.orb;
-  bool ok = false;
-  if (name == "enhance") {
-    ok = parseBool(value, p.enhance_enabled);
-  } else if (name == "tone_curve") {
-    ok = parseToneCurve(value, e.tone_curve);
-  } else if (name == "alpha") {
-    ok = parseWhole(value, e.alpha);
-  } else if (name == "tau") {
-    ok = parseWhole(value, e.tau);
-  } else if (name == "beta") {
-    ok = parseWhole(value, e.beta);
-  } else if (name == "sharpening") {
-    ok = parseWhole(value, e.sharpening);
-  } else if (name == "blur_ksize") {
-    ok = parseWhole(value, e.blur_ksize);
-  } else if (name == "blur_sigma") {
-    ok = parseWhole(value, e.blur_sigma);
-  } else if (name == "std_threshold") {
-    ok = parseWhole(value, e.std_threshold);
-  } else if (name == "gamma_mode") {
-    ok = parseGammaMode(value, e.gamma_mode);
-  } else if (name == "tone_tiles") {
-    ok = parseWhole(value, e.tone_tiles);
-  } else if (name == "grid_size") {
-    ok = parseWhole(value, t.grid_size);
-  } else if (name == "threshold_scale") {
-    ok = parseWhole(value, t.threshold_scale);
-  } else if (name == "c_min") {
-    ok = parseWhole(value, t.c_min);
-  } else if (name == "threshold_mode") {
-    ok = parseThresholdMode(value, o.threshold_mode);
-  } else if (name == "fast_threshold") {
-    ok = parseWhole(value, o.fast_threshold);
-  } else if (name == "max_features") {
-    ok = parseWhole(value, o.max_features);
-  } else if (name == "n_levels") {
-    ok = parseWhole(value, o.n_levels);
-  } else if (name == "scale_factor") {
-    ok = parseWhole(value, o.scale_factor);
-  } else if (name == "candidate_ratio") {
-    ok = parseWhole(value, o.candidate_ratio);
-  } else {
+  const Field* field = findField(name);
+  if (!field) {
     return "unknown parameter '" + name + "'";
   }
-  return ok ? std::string() : "invalid value for " + name + ": '" + value + "'";
+  return field->parse(p, value) ? std::string() : "invalid value for " + name + ": '" + value + "'";
+}
+
+std::optional<std::string> paramText(const Params& p, const std::string& name) {
+  const Field* field = findField(name);
+  return field ? std::optional<std::string>(field->format(p)) : std::nullopt;
 }
 
 std::vector<std::string> inactiveParameters(const Params& p) {
@@ -233,44 +271,36 @@ const char* toString(Preset preset) {
   return preset == Preset::kPaper ? "paper" : "default";
 }
 
-bool parseToneCurve(const std::string& name, ToneCurve& out) {
-  for (ToneCurve c : {ToneCurve::kGamma, ToneCurve::kEqualize}) {
-    if (name == toString(c)) {
-      out = c;
+namespace {
+
+// The enum value whose name is `name`, among `values`; false (and `out` unchanged) when none is.
+template <typename Enum>
+bool parseName(const std::string& name, std::initializer_list<Enum> values, Enum& out) {
+  for (Enum v : values) {
+    if (name == toString(v)) {
+      out = v;
       return true;
     }
   }
   return false;
+}
+
+}  // namespace
+
+bool parseToneCurve(const std::string& name, ToneCurve& out) {
+  return parseName(name, {ToneCurve::kGamma, ToneCurve::kEqualize}, out);
 }
 
 bool parsePreset(const std::string& name, Preset& out) {
-  for (Preset p : {Preset::kDefault, Preset::kPaper}) {
-    if (name == toString(p)) {
-      out = p;
-      return true;
-    }
-  }
-  return false;
+  return parseName(name, {Preset::kDefault, Preset::kPaper}, out);
 }
 
 bool parseGammaMode(const std::string& name, GammaMode& out) {
-  for (GammaMode m : {GammaMode::kAuto, GammaMode::kAlways, GammaMode::kNever}) {
-    if (name == toString(m)) {
-      out = m;
-      return true;
-    }
-  }
-  return false;
+  return parseName(name, {GammaMode::kAuto, GammaMode::kAlways, GammaMode::kNever}, out);
 }
 
 bool parseThresholdMode(const std::string& name, ThresholdMode& out) {
-  for (ThresholdMode m : {ThresholdMode::kAdaptive, ThresholdMode::kFixed}) {
-    if (name == toString(m)) {
-      out = m;
-      return true;
-    }
-  }
-  return false;
+  return parseName(name, {ThresholdMode::kAdaptive, ThresholdMode::kFixed}, out);
 }
 
 }  // namespace enhanced_orb

@@ -1,7 +1,5 @@
 // enhanced_orb/EnhanceNodelet: image -> image_enhanced (mono8, same header), section III-A.
 #include <chrono>
-#include <functional>
-#include <map>
 #include <memory>
 #include <mutex>
 
@@ -19,46 +17,9 @@ namespace enhanced_orb {
 
 class EnhanceNodelet : public ImageNodelet {
 private:
-  // ~preset (read at start) gives every parameter not set otherwise its value.
-  void seedPreset() {
-    ros::NodeHandle& pnh = getPrivateNodeHandle();
-    const std::string name = pnh.param<std::string>("preset", "default");
-    Preset preset = Preset::kDefault;
-    if (!parsePreset(name, preset)) {
-      NODELET_ERROR("preset '%s' is not default or paper; using default", name.c_str());
-    }
-    const EnhanceParams e = Params::preset(preset).enhance;
-    auto seed = [&pnh](const char* key, const auto& value) {
-      if (!pnh.hasParam(key)) {
-        pnh.setParam(key, value);
-      }
-    };
-    seed("tone_curve", std::string(toString(e.tone_curve)));
-    seed("tone_tiles", e.tone_tiles);
-    seed("alpha", e.alpha);
-    seed("tau", e.tau);
-    seed("beta", e.beta);
-    seed("sharpening", e.sharpening);
-    seed("blur_ksize", e.blur_ksize);
-    seed("blur_sigma", e.blur_sigma);
-    seed("std_threshold", e.std_threshold);
-    seed("gamma_mode", std::string(toString(e.gamma_mode)));
-    NODELET_INFO("preset %s", toString(preset));
-  }
-
   void advertiseOutputs() override {
-    warnWrongTypes({{"enabled", ParamType::kBool},
-                    {"tone_curve", ParamType::kString},
-                    {"tone_tiles", ParamType::kInt},
-                    {"alpha", ParamType::kDouble},
-                    {"tau", ParamType::kDouble},
-                    {"beta", ParamType::kDouble},
-                    {"sharpening", ParamType::kDouble},
-                    {"blur_ksize", ParamType::kInt},
-                    {"blur_sigma", ParamType::kDouble},
-                    {"std_threshold", ParamType::kDouble},
-                    {"gamma_mode", ParamType::kString}});
-    seedPreset();
+    warnWrongTypes(configTypes<EnhanceConfig>());
+    seedPreset<EnhanceConfig>();
     pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());
     status_pub_ = getNodeHandle().advertise<EnhanceStatus>("enhance_status", queueSize());
     address_pub_ = advertiseAddress("output_address");
@@ -97,33 +58,19 @@ private:
       NODELET_WARN("blur_ksize = %d must be odd; using %d", config.blur_ksize, config.blur_ksize + 1);
       config.blur_ksize += 1;
     }
+    std::vector<std::string> problems;
     ToneCurve curve;
     if (!parseToneCurve(config.tone_curve, curve)) {
-      NODELET_WARN("tone_curve '%s' is not equalize or gamma; keeping '%s'", config.tone_curve.c_str(),
-                   valid_.tone_curve.c_str());
-      config.tone_curve = valid_.tone_curve;
+      problems.push_back("tone_curve '" + config.tone_curve + "' is not equalize or gamma");
     }
     GammaMode mode;
     if (!parseGammaMode(config.gamma_mode, mode)) {
-      NODELET_WARN("gamma_mode '%s' is not auto, always or never; keeping '%s'", config.gamma_mode.c_str(),
-                   valid_.gamma_mode.c_str());
-      config.gamma_mode = valid_.gamma_mode;
+      problems.push_back("gamma_mode '" + config.gamma_mode + "' is not auto, always or never");
     }
-    const std::map<std::string, std::function<std::string()>> restore = {
-        {"tone_tiles", [&] { return std::to_string(config.tone_tiles = valid_.tone_tiles); }},
-        {"alpha", [&] { return std::to_string(config.alpha = valid_.alpha); }},
-        {"tau", [&] { return std::to_string(config.tau = valid_.tau); }},
-        {"beta", [&] { return std::to_string(config.beta = valid_.beta); }},
-        {"sharpening", [&] { return std::to_string(config.sharpening = valid_.sharpening); }},
-        {"blur_ksize", [&] { return std::to_string(config.blur_ksize = valid_.blur_ksize); }},
-        {"blur_sigma", [&] { return std::to_string(config.blur_sigma = valid_.blur_sigma); }},
-        {"std_threshold", [&] { return std::to_string(config.std_threshold = valid_.std_threshold); }},
-    };
     for (const std::string& problem : validate(toParams(config))) {
-      const auto it = restore.find(problem.substr(0, problem.find(' ')));
-      const std::string kept = it != restore.end() ? it->second() : "the previous value";
-      NODELET_WARN("%s; keeping %s", problem.c_str(), kept.c_str());
+      problems.push_back(problem);
     }
+    restoreRefused(config, valid_, problems);
     const EnhanceParams p = toParams(config);
     if (!validate(p).empty()) {  // only if the restored values are invalid together
       NODELET_ERROR("parameters rejected, keeping the previous ones: %s", joinMessages(validate(p)).c_str());
@@ -133,14 +80,7 @@ private:
     Params all;
     all.enhance = p;
     all.enhance_enabled = config.enabled;
-    warnInactive(all, {{"tone_curve", config.tone_curve},
-                       {"tone_tiles", std::to_string(config.tone_tiles)},
-                       {"alpha", std::to_string(config.alpha)},
-                       {"tau", std::to_string(config.tau)},
-                       {"beta", std::to_string(config.beta)},
-                       {"sharpening", std::to_string(config.sharpening)},
-                       {"std_threshold", std::to_string(config.std_threshold)},
-                       {"gamma_mode", config.gamma_mode}});
+    warnInactive(all, configValues(config));
     valid_ = config;
     std::lock_guard<std::mutex> lock(params_mutex_);
     params_ = p;
@@ -187,7 +127,7 @@ private:
     auto status = boost::make_shared<EnhanceStatus>();
     status->header = header;
     status->lambda = static_cast<float>(enabled ? result.lambda : imageLambda(gray));
-    status->mean_gray = static_cast<float>(cv::mean(gray)[0]);
+    status->mean_gray = static_cast<float>(enabled ? result.mean_gray : cv::mean(gray)[0]);
     status->poor_quality = enabled && result.poor_quality;
     status->inverted = result.inverted;
     status->tone_curve = toString(params.tone_curve);

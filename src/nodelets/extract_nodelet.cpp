@@ -1,9 +1,7 @@
 // enhanced_orb/ExtractNodelet: image -> keypoints (KeypointArray) and image_annotated (bgr8),
 // ORB with the truncated adaptive threshold (section III-B) or the original fixed threshold.
 #include <deque>
-#include <functional>
 #include <iomanip>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -25,46 +23,9 @@ namespace enhanced_orb {
 
 class ExtractNodelet : public ImageNodelet {
 private:
-  // ~preset (read at start) gives every parameter not set otherwise its value.
-  void seedPreset() {
-    ros::NodeHandle& pnh = getPrivateNodeHandle();
-    const std::string name = pnh.param<std::string>("preset", "default");
-    Preset preset = Preset::kDefault;
-    if (!parsePreset(name, preset)) {
-      NODELET_ERROR("preset '%s' is not default or paper; using default", name.c_str());
-    }
-    const Params p = Params::preset(preset);
-    auto seed = [&pnh](const char* key, const auto& value) {
-      if (!pnh.hasParam(key)) {
-        pnh.setParam(key, value);
-      }
-    };
-    seed("threshold_mode", std::string(toString(p.orb.threshold_mode)));
-    seed("c_min", p.threshold.c_min);
-    seed("threshold_scale", p.threshold.threshold_scale);
-    seed("grid_size", p.threshold.grid_size);
-    seed("fast_threshold", p.orb.fast_threshold);
-    seed("max_features", p.orb.max_features);
-    seed("candidate_ratio", p.orb.candidate_ratio);
-    seed("n_levels", p.orb.n_levels);
-    seed("scale_factor", p.orb.scale_factor);
-    NODELET_INFO("preset %s", toString(preset));
-  }
-
   void advertiseOutputs() override {
-    warnWrongTypes({{"threshold_mode", ParamType::kString},
-                    {"c_min", ParamType::kInt},
-                    {"threshold_scale", ParamType::kDouble},
-                    {"grid_size", ParamType::kInt},
-                    {"fast_threshold", ParamType::kInt},
-                    {"max_features", ParamType::kInt},
-                    {"candidate_ratio", ParamType::kDouble},
-                    {"n_levels", ParamType::kInt},
-                    {"scale_factor", ParamType::kDouble},
-                    {"draw_keypoints", ParamType::kBool},
-                    {"draw_grid", ParamType::kBool},
-                    {"draw_text", ParamType::kBool}});
-    seedPreset();
+    warnWrongTypes(configTypes<ExtractConfig>());
+    seedPreset<ExtractConfig>();
     ros::NodeHandle& nh = getNodeHandle();
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
     annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
@@ -103,27 +64,15 @@ private:
   // A refused value is set back to the last valid one in `config`, which the server then reports:
   // what dynamic_reconfigure shows is what runs, and one bad value never blocks the others.
   void reconfigure(ExtractConfig& config) {
+    std::vector<std::string> problems;
     ThresholdMode mode;
     if (!parseThresholdMode(config.threshold_mode, mode)) {
-      NODELET_WARN("threshold_mode '%s' is not adaptive or fixed; keeping '%s'", config.threshold_mode.c_str(),
-                   valid_.threshold_mode.c_str());
-      config.threshold_mode = valid_.threshold_mode;
+      problems.push_back("threshold_mode '" + config.threshold_mode + "' is not adaptive or fixed");
     }
-    const std::map<std::string, std::function<std::string()>> restore = {
-        {"c_min", [&] { return std::to_string(config.c_min = valid_.c_min); }},
-        {"threshold_scale", [&] { return std::to_string(config.threshold_scale = valid_.threshold_scale); }},
-        {"grid_size", [&] { return std::to_string(config.grid_size = valid_.grid_size); }},
-        {"fast_threshold", [&] { return std::to_string(config.fast_threshold = valid_.fast_threshold); }},
-        {"max_features", [&] { return std::to_string(config.max_features = valid_.max_features); }},
-        {"candidate_ratio", [&] { return std::to_string(config.candidate_ratio = valid_.candidate_ratio); }},
-        {"n_levels", [&] { return std::to_string(config.n_levels = valid_.n_levels); }},
-        {"scale_factor", [&] { return std::to_string(config.scale_factor = valid_.scale_factor); }},
-    };
     for (const std::string& problem : validate(toParams(config))) {
-      const auto it = restore.find(problem.substr(0, problem.find(' ')));
-      const std::string kept = it != restore.end() ? it->second() : "the previous value";
-      NODELET_WARN("%s; keeping %s", problem.c_str(), kept.c_str());
+      problems.push_back(problem);
     }
+    restoreRefused(config, valid_, problems);
     const Params p = toParams(config);
     std::shared_ptr<const OrbExtractor> extractor;
     try {
@@ -133,10 +82,7 @@ private:
       config = valid_;
       return;
     }
-    warnInactive(p, {{"c_min", std::to_string(config.c_min)},
-                     {"threshold_scale", std::to_string(config.threshold_scale)},
-                     {"fast_threshold", std::to_string(config.fast_threshold)},
-                     {"candidate_ratio", std::to_string(config.candidate_ratio)}});
+    warnInactive(p, configValues(config));
     valid_ = config;
     std::lock_guard<std::mutex> lock(params_mutex_);
     extractor_ = extractor;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <exception>
+#include <sstream>
 
 #include <diagnostic_msgs/KeyValue.h>
 
@@ -14,10 +15,7 @@ void ImageNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_unique<image_transport::ImageTransport>(nh);
-  warnWrongTypes({{"queue_size", ParamType::kInt},
-                  {"image_transport", ParamType::kString},
-                  {"debug_addresses", ParamType::kBool},
-                  {"preset", ParamType::kString}});
+  warnWrongTypes({{"queue_size", "int"}, {"image_transport", "str"}, {"debug_addresses", "bool"}, {"preset", "str"}});
   pnh.param("queue_size", queue_size_, 5);
   if (queue_size_ < 1) {
     NODELET_WARN("~queue_size = %d is out of range [1, inf); using 1", queue_size_);
@@ -216,55 +214,79 @@ void ImageNodelet::warnInactive(const Params& params, const std::map<std::string
   last_values_ = values;
 }
 
-void ImageNodelet::warnWrongTypes(const std::map<std::string, ParamType>& expected) {
+void ImageNodelet::warnWrongTypes(const std::map<std::string, std::string>& expected) {
+  using XmlRpc::XmlRpcValue;
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   for (const auto& [name, type] : expected) {
-    XmlRpc::XmlRpcValue value;
+    XmlRpcValue value;
     if (!pnh.getParam(name, value)) {
       continue;
     }
-    const XmlRpc::XmlRpcValue::Type got = value.getType();
-    bool ok = false;
-    const char* wanted = "";
-    switch (type) {
-      case ParamType::kBool:
-        ok = got == XmlRpc::XmlRpcValue::TypeBoolean;
-        wanted = "a bool";
-        break;
-      case ParamType::kInt:
-        ok = got == XmlRpc::XmlRpcValue::TypeInt;
-        wanted = "an int";
-        break;
-      case ParamType::kDouble:
-        ok = got == XmlRpc::XmlRpcValue::TypeDouble || got == XmlRpc::XmlRpcValue::TypeInt;
-        wanted = "a number";
-        break;
-      case ParamType::kString:
-        ok = got == XmlRpc::XmlRpcValue::TypeString;
-        wanted = "a string";
-        break;
+    const XmlRpcValue::Type got = value.getType();
+    const bool ok = type == "bool"     ? got == XmlRpcValue::TypeBoolean
+                    : type == "int"    ? got == XmlRpcValue::TypeInt
+                    : type == "double" ? got == XmlRpcValue::TypeDouble || got == XmlRpcValue::TypeInt
+                                       : got == XmlRpcValue::TypeString;
+    if (ok) {
+      continue;
     }
-    if (!ok) {
-      std::string text;
-      switch (got) {
-        case XmlRpc::XmlRpcValue::TypeString:
-          text = "'" + static_cast<std::string&>(value) + "'";
-          break;
-        case XmlRpc::XmlRpcValue::TypeInt:
-          text = std::to_string(static_cast<int>(value));
-          break;
-        case XmlRpc::XmlRpcValue::TypeDouble:
-          text = std::to_string(static_cast<double>(value));
-          break;
-        case XmlRpc::XmlRpcValue::TypeBoolean:
-          text = static_cast<bool>(value) ? "true" : "false";
-          break;
-        default:
-          text = "a value of another type";
-          break;
-      }
-      NODELET_WARN("~%s = %s is not %s; it is ignored and the default is used", name.c_str(), text.c_str(), wanted);
+    std::string text = "a value of another type";
+    if (got == XmlRpcValue::TypeString) {
+      text = "'" + static_cast<std::string&>(value) + "'";
+    } else if (got == XmlRpcValue::TypeInt) {
+      text = std::to_string(static_cast<int>(value));
+    } else if (got == XmlRpcValue::TypeDouble) {
+      text = std::to_string(static_cast<double>(value));
+    } else if (got == XmlRpcValue::TypeBoolean) {
+      text = static_cast<bool>(value) ? "true" : "false";
     }
+    const char* wanted = type == "bool"     ? "a bool"
+                         : type == "int"    ? "an int"
+                         : type == "double" ? "a number"
+                                            : "a string";
+    NODELET_WARN("~%s = %s is not %s; it is ignored and the default is used", name.c_str(), text.c_str(), wanted);
+  }
+}
+
+std::map<std::string, std::string> ImageNodelet::configValues(const dynamic_reconfigure::Config& msg) {
+  std::map<std::string, std::string> values;
+  for (const auto& b : msg.bools) {
+    values[b.name] = b.value ? "true" : "false";
+  }
+  for (const auto& i : msg.ints) {
+    values[i.name] = std::to_string(i.value);
+  }
+  for (const auto& d : msg.doubles) {
+    std::ostringstream text;
+    text << d.value;
+    values[d.name] = text.str();
+  }
+  for (const auto& str : msg.strs) {
+    values[str.name] = str.value;
+  }
+  return values;
+}
+
+Preset ImageNodelet::readPreset() {
+  const std::string name = getPrivateNodeHandle().param<std::string>("preset", "default");
+  Preset preset = Preset::kDefault;
+  if (!parsePreset(name, preset)) {
+    NODELET_ERROR("preset '%s' is not default or paper; using default", name.c_str());
+  }
+  NODELET_INFO("preset %s", toString(preset));
+  return preset;
+}
+
+void ImageNodelet::setTyped(const std::string& name, const std::string& type, const std::string& text) {
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  if (type == "int") {
+    pnh.setParam(name, std::stoi(text));
+  } else if (type == "double") {
+    pnh.setParam(name, std::stod(text));
+  } else if (type == "bool") {
+    pnh.setParam(name, text == "true");
+  } else {
+    pnh.setParam(name, text);
   }
 }
 

@@ -191,3 +191,25 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   EXPECT_TRUE(has(base, "alpha"));
   EXPECT_FALSE(has(base, "fast_threshold"));
 }
+
+TEST(Params, ParamTextReadsBackToTheSameValue) {
+  const char* names[] = {"enhance",        "tone_curve",   "tone_tiles",      "alpha",      "tau",
+                         "beta",           "sharpening",   "blur_ksize",      "blur_sigma", "std_threshold",
+                         "gamma_mode",     "grid_size",    "threshold_scale", "c_min",      "threshold_mode",
+                         "fast_threshold", "max_features", "candidate_ratio", "n_levels",   "scale_factor"};
+  for (const Params& from : {Params(), Params::paper(), Params::baseline()}) {
+    Params to;
+    to.enhance.alpha = 0.123;  // differs from every preset, so that a missed field shows
+    for (const char* name : names) {
+      const std::optional<std::string> text = paramText(from, name);
+      ASSERT_TRUE(text) << name;
+      EXPECT_EQ(setParam(to, name, *text), "") << name << " = " << *text;
+      EXPECT_EQ(paramText(to, name), text) << name;
+    }
+    EXPECT_DOUBLE_EQ(to.enhance.alpha, from.enhance.alpha);
+    EXPECT_DOUBLE_EQ(to.orb.candidate_ratio, from.orb.candidate_ratio);
+    EXPECT_EQ(to.enhance.tone_curve, from.enhance.tone_curve);
+    EXPECT_EQ(to.enhance_enabled, from.enhance_enabled);
+  }
+  EXPECT_FALSE(paramText(Params(), "draw_grid"));
+}
