@@ -32,7 +32,7 @@ std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size);
 // I_mid: the cell's centre pixel, local (rows/2, cols/2).
 int centreValue(const cv::Mat& cell);
 
-// Eqs 33-34: max(c_min, lround(threshold_scale |I_mid - t|)).
+// Eqs 33-34: max(c_min, lround(threshold_scale |I_mid - t|)), at most 255.
 int truncatedThreshold(int i_mid, int otsu, const ThresholdParams& params);
 
 // Eqs 33-34 of one cell (Otsu through cv::threshold); c_min for an empty cell.

@@ -50,10 +50,14 @@ struct Extraction {
 // to round(size / scale_factor^i). Stops early when a level would have no pixel.
 std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double scale_factor);
 
-// FAST-9 with non-maximum suppression, run cell by cell with each cell's threshold from
-// `thresholds` (grid x grid, CV_32S). Each cell's window is widened by 3 pixels so that corners on
-// cell borders are found; a corner belongs to the cell that contains it. Only corners at least
-// kEdgeThreshold from the border are returned, in level coordinates, response = FAST score.
+// FAST-9 with non-maximum suppression, cell by cell with each cell's threshold from `thresholds`
+// (grid x grid, CV_32S): the corners cv::FAST finds in each cell's window (the cell widened by 3
+// pixels, so that its circle reads the neighbouring pixels), bit for bit, found from one map of
+// FAST scores of the level (kernels/fast_score.h) instead. Only corners at least kEdgeThreshold
+// from the border are returned, in level coordinates, response = cv::FAST's score, cell by cell
+// (row-major), each cell row by row. `scores` and `corners` are workspaces reused across calls.
+void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, cv::Mat& scores,
+                   std::vector<cv::KeyPoint>& corners);
 std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds);
 
 // How a budget of `total` keypoints splits over the levels: geometric with ratio 1/scale_factor

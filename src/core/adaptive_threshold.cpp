@@ -109,7 +109,9 @@ int centreValue(const cv::Mat& cell) {
 
 int truncatedThreshold(int i_mid, int otsu, const ThresholdParams& params) {
   const double c = params.threshold_scale * std::abs(i_mid - otsu);  // eq 33
-  return std::max(params.c_min, static_cast<int>(std::lround(c)));   // eq 34
+  // Eq 34, capped at 255: no 8-bit pixel differs from another by more, and cv::FAST reads larger
+  // thresholds modulo 256 in its vector path.
+  return std::min(255, std::max(params.c_min, static_cast<int>(std::lround(c))));
 }
 
 int cellThreshold(const cv::Mat& cell, const ThresholdParams& params) {

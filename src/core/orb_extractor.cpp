@@ -11,11 +11,12 @@
 
 #include "enhanced_orb/adaptive_threshold.h"
 #include "enhanced_orb/enhance.h"
+#include "enhanced_orb/simd.h"
+#include "kernels/fast_score.h"
 
 namespace enhanced_orb {
 namespace {
 
-constexpr int kFastRadius = 3;  // the FAST circle: 16 pixels at radius 3
 constexpr int kOrientationRadius = 15;
 
 class Stopwatch {
@@ -68,37 +69,73 @@ std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double sca
   return pyramid;
 }
 
-std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds) {
-  CV_Assert(thresholds.type() == CV_32S && thresholds.rows == thresholds.cols);
-  std::vector<cv::KeyPoint> corners;
+void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, cv::Mat& scores,
+                   std::vector<cv::KeyPoint>& corners) {
+  CV_Assert(level.type() == CV_8UC1 && thresholds.type() == CV_32S && thresholds.rows == thresholds.cols);
+  corners.clear();
   const cv::Rect interior(kEdgeThreshold, kEdgeThreshold, level.cols - 2 * kEdgeThreshold,
                           level.rows - 2 * kEdgeThreshold);
   if (interior.width <= 0 || interior.height <= 0) {
-    return corners;
+    return;
   }
   const int grid = thresholds.rows;
-  std::vector<cv::KeyPoint> found;
+  // cv::FAST clamps its threshold to [0, 255]; no pixel scores at or below the smallest one of the
+  // level can be a corner or weigh in a suppression, so the kernel may skip those.
+  cv::Mat clamped;
+  cv::min(cv::max(thresholds, 0), 255, clamped);
+  double lowest = 0.0;
+  cv::minMaxLoc(clamped, &lowest);
+
+  // One score per interior pixel, in a map of the level's size (only the interior is written).
+  scores.create(level.size(), CV_8UC1);
+  const SimdLevel simd = activeSimdLevel();
+  for (int y = interior.y; y < interior.br().y; ++y) {
+    kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
+                          interior.width, scores.ptr<std::uint8_t>(y) + interior.x, static_cast<int>(lowest));
+  }
+
+  // cv::FAST run on each cell's window (the cell widened by 3, where its circle reads) keeps a
+  // corner when its score exceeds that of each of its 8 neighbours, a neighbour counting 0 unless
+  // it lies in the cell and is a corner at the cell's threshold. Corners come cell by cell
+  // (row-major), each cell row by row.
   for (int cy = 0; cy < grid; ++cy) {
     for (int cx = 0; cx < grid; ++cx) {
       const cv::Rect cell = gridCell(level.size(), grid, cx, cy) & interior;
       if (cell.empty()) {
         continue;
       }
-      // cv::FAST tests pixels at least 3 from its window's border: widening the window by 3 makes
-      // exactly the cell searchable, with the circle reading the neighbouring pixels.
-      const cv::Rect window(cell.x - kFastRadius, cell.y - kFastRadius, cell.width + 2 * kFastRadius,
-                            cell.height + 2 * kFastRadius);
-      found.clear();
-      cv::FAST(level(window), found, thresholds.at<int>(cy, cx), true, cv::FastFeatureDetector::TYPE_9_16);
-      for (cv::KeyPoint& kp : found) {
-        kp.pt.x += static_cast<float>(window.x);
-        kp.pt.y += static_cast<float>(window.y);
-        if (cell.contains(cv::Point(cvRound(kp.pt.x), cvRound(kp.pt.y)))) {
-          corners.push_back(kp);
+      const int t = clamped.at<int>(cy, cx);
+      const int x_end = cell.br().x;
+      const int y_end = cell.br().y;
+      auto neighbour = [&](int x, int y) -> int {
+        if (x < cell.x || x >= x_end || y < cell.y || y >= y_end) {
+          return 0;
+        }
+        const int m = scores.at<std::uint8_t>(y, x);
+        return m > t ? m - 1 : 0;
+      };
+      for (int y = cell.y; y < y_end; ++y) {
+        const std::uint8_t* row = scores.ptr<std::uint8_t>(y);
+        for (int x = cell.x; x < x_end; ++x) {
+          if (row[x] <= t) {
+            continue;
+          }
+          const int score = row[x] - 1;  // cv::FAST's corner score
+          if (score > neighbour(x - 1, y - 1) && score > neighbour(x, y - 1) && score > neighbour(x + 1, y - 1) &&
+              score > neighbour(x - 1, y) && score > neighbour(x + 1, y) && score > neighbour(x - 1, y + 1) &&
+              score > neighbour(x, y + 1) && score > neighbour(x + 1, y + 1)) {
+            corners.emplace_back(static_cast<float>(x), static_cast<float>(y), 7.0f, -1.0f, static_cast<float>(score));
+          }
         }
       }
     }
   }
+}
+
+std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds) {
+  cv::Mat scores;
+  std::vector<cv::KeyPoint> corners;
+  detectCorners(level, thresholds, scores, corners);
   return corners;
 }
 

@@ -1,0 +1,31 @@
+// Which vector instruction set the extraction kernels use, chosen at run time.
+#ifndef ENHANCED_ORB_SIMD_H
+#define ENHANCED_ORB_SIMD_H
+
+#include <string>
+#include <vector>
+
+namespace enhanced_orb {
+
+// kScalar is the reference every other level is tested against; kVector128 is SSE2 on x86-64 (and
+// the 16-byte path elsewhere), kAvx2 and kAvx512 are x86-64 only.
+enum class SimdLevel { kScalar = 0, kVector128 = 1, kAvx2 = 2, kAvx512 = 3 };
+
+// The levels this build has kernels for and this CPU can run, lowest first. A build configured
+// with -DENHANCED_ORB_PORTABLE=ON has kScalar and kVector128 only.
+std::vector<SimdLevel> supportedSimdLevels();
+
+// The level in use: the best supported one, unless lowered by setSimdLevel() or by the
+// environment variable ENHANCED_ORB_SIMD (scalar, sse2, avx2, avx512) when the process started.
+SimdLevel activeSimdLevel();
+
+// Uses `level`, or the best supported level below it. Returns the level now in use. Meant for
+// tests and benchmarks: it is process-wide, and results are identical at every level.
+SimdLevel setSimdLevel(SimdLevel level);
+
+const char* toString(SimdLevel level);  // "scalar", "sse2", "avx2", "avx512"
+bool parseSimdLevel(const std::string& name, SimdLevel& out);
+
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_SIMD_H

@@ -1,0 +1,217 @@
+// A straightforward implementation of the whole extraction, from OpenCV's building blocks and
+// the definitions written out: cv::FAST run cell by cell, Otsu through cv::threshold, the spread
+// selection on cv::KeyPoint vectors, the orientation pixel by pixel, and cv::ORB::compute level by
+// level. The library's extractor must give exactly its keypoints, thresholds and descriptors.
+#ifndef ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
+#define ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "enhanced_orb/adaptive_threshold.h"
+#include "enhanced_orb/enhance.h"
+#include "enhanced_orb/orb_extractor.h"
+
+namespace enhanced_orb {
+namespace reference {
+
+inline std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds) {
+  constexpr int kFastRadius = 3;
+  std::vector<cv::KeyPoint> corners;
+  const cv::Rect interior(kEdgeThreshold, kEdgeThreshold, level.cols - 2 * kEdgeThreshold,
+                          level.rows - 2 * kEdgeThreshold);
+  if (interior.width <= 0 || interior.height <= 0) {
+    return corners;
+  }
+  const int grid = thresholds.rows;
+  std::vector<cv::KeyPoint> found;
+  for (int cy = 0; cy < grid; ++cy) {
+    for (int cx = 0; cx < grid; ++cx) {
+      const cv::Rect cell = gridCell(level.size(), grid, cx, cy) & interior;
+      if (cell.empty()) {
+        continue;
+      }
+      const cv::Rect window(cell.x - kFastRadius, cell.y - kFastRadius, cell.width + 2 * kFastRadius,
+                            cell.height + 2 * kFastRadius);
+      found.clear();
+      cv::FAST(level(window), found, thresholds.at<int>(cy, cx), true, cv::FastFeatureDetector::TYPE_9_16);
+      for (cv::KeyPoint& kp : found) {
+        kp.pt.x += static_cast<float>(window.x);
+        kp.pt.y += static_cast<float>(window.y);
+        if (cell.contains(cv::Point(cvRound(kp.pt.x), cvRound(kp.pt.y)))) {
+          corners.push_back(kp);
+        }
+      }
+    }
+  }
+  return corners;
+}
+
+inline cv::Mat cellThresholds(const cv::Mat& level, const ThresholdParams& params) {
+  cv::Mat thresholds(params.grid_size, params.grid_size, CV_32S);
+  for (int cy = 0; cy < params.grid_size; ++cy) {
+    for (int cx = 0; cx < params.grid_size; ++cx) {
+      thresholds.at<int>(cy, cx) = cellThreshold(level(gridCell(level.size(), params.grid_size, cx, cy)), params);
+    }
+  }
+  return thresholds;
+}
+
+inline bool stronger(const cv::KeyPoint& a, const cv::KeyPoint& b) {
+  if (a.response != b.response) {
+    return a.response > b.response;
+  }
+  return a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x;
+}
+
+// The n strongest, in their order of detection.
+inline void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n) {
+  if (keypoints.size() <= n) {
+    return;
+  }
+  std::vector<cv::KeyPoint> sorted = keypoints;
+  std::sort(sorted.begin(), sorted.end(), stronger);
+  const cv::KeyPoint weakest = sorted[n - 1];
+  std::vector<cv::KeyPoint> kept;
+  for (const cv::KeyPoint& kp : keypoints) {
+    if (!stronger(weakest, kp)) {
+      kept.push_back(kp);
+    }
+  }
+  keypoints = kept;
+}
+
+inline std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size) {
+  if (n <= 0) {
+    return {};
+  }
+  if (static_cast<int>(keypoints.size()) <= n) {
+    return keypoints;
+  }
+  const int cell = std::max(1, cvRound(std::sqrt(static_cast<double>(size.area()) / n)));
+  const int cols = (size.width + cell - 1) / cell;
+  const int rows = (size.height + cell - 1) / cell;
+  std::vector<std::vector<cv::KeyPoint>> buckets(static_cast<size_t>(cols) * rows);
+  for (const cv::KeyPoint& kp : keypoints) {
+    const int bx = std::clamp(static_cast<int>(kp.pt.x) / cell, 0, cols - 1);
+    const int by = std::clamp(static_cast<int>(kp.pt.y) / cell, 0, rows - 1);
+    buckets[static_cast<size_t>(by) * cols + bx].push_back(kp);
+  }
+  for (auto& bucket : buckets) {
+    std::sort(bucket.begin(), bucket.end(), stronger);
+  }
+  std::vector<cv::KeyPoint> selected;
+  std::vector<cv::KeyPoint> round;
+  for (size_t rank = 0; static_cast<int>(selected.size()) < n; ++rank) {
+    round.clear();
+    for (const auto& bucket : buckets) {
+      if (rank < bucket.size()) {
+        round.push_back(bucket[rank]);
+      }
+    }
+    const size_t room = n - selected.size();
+    if (round.size() > room) {
+      std::sort(round.begin(), round.end(), stronger);
+      round.resize(room);
+    }
+    selected.insert(selected.end(), round.begin(), round.end());
+  }
+  return selected;
+}
+
+inline void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoints) {
+  constexpr int r = 15;
+  const cv::Rect inside(r, r, level.cols - 2 * r, level.rows - 2 * r);
+  for (cv::KeyPoint& kp : keypoints) {
+    const cv::Point c(cvRound(kp.pt.x), cvRound(kp.pt.y));
+    if (!inside.contains(c)) {
+      kp.angle = 0.0f;
+      continue;
+    }
+    int m01 = 0;
+    int m10 = 0;
+    for (int v = -r; v <= r; ++v) {
+      for (int u = -r; u <= r; ++u) {
+        if ((u * u + v * v) * 4 <= (2 * r + 1) * (2 * r + 1)) {  // within r + 1/2 of the centre
+          const int value = level.at<std::uint8_t>(c.y + v, c.x + u);
+          m10 += u * value;
+          m01 += v * value;
+        }
+      }
+    }
+    kp.angle = cv::fastAtan2(static_cast<float>(m01), static_cast<float>(m10));
+  }
+}
+
+// OrbExtractor::extract, step by step.
+inline Extraction extract(const cv::Mat& gray, const Params& params) {
+  Extraction out;
+  out.image = params.enhance_enabled ? enhance(gray, params.enhance).image : gray;
+  if (gray.empty()) {
+    out.descriptors.create(0, kDescriptorBytes, CV_8U);
+    return out;
+  }
+  const OrbParams& orb = params.orb;
+  const std::vector<cv::Mat> pyramid = buildPyramid(out.image, orb.n_levels, orb.scale_factor);
+  const int n_levels = static_cast<int>(pyramid.size());
+  std::vector<std::vector<cv::KeyPoint>> level_keypoints(n_levels);
+  for (int level = 0; level < n_levels; ++level) {
+    cv::Mat thresholds =
+        orb.threshold_mode == ThresholdMode::kAdaptive
+            ? reference::cellThresholds(pyramid[level], params.threshold)
+            : cv::Mat(params.threshold.grid_size, params.threshold.grid_size, CV_32S, cv::Scalar(orb.fast_threshold));
+    level_keypoints[level] = reference::detectCorners(pyramid[level], thresholds);
+    out.level_thresholds.push_back(thresholds);
+  }
+  out.cell_thresholds = out.level_thresholds.front();
+  if (orb.max_features > 0) {
+    const std::vector<int> budgets = levelBudgets(orb.max_features, orb.n_levels, orb.scale_factor);
+    int carry = 0;
+    for (int level = 0; level < n_levels; ++level) {
+      const int budget = budgets[level] + carry;
+      if (orb.candidate_ratio > 0.0) {
+        reference::keepStrongest(level_keypoints[level], static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
+      }
+      level_keypoints[level] =
+          reference::selectSpread(std::move(level_keypoints[level]), budget, pyramid[level].size());
+      carry = budget - static_cast<int>(level_keypoints[level].size());
+    }
+  }
+  cv::Ptr<cv::ORB> describer = cv::ORB::create(500, 1.2f, 1, kEdgeThreshold, 0, 2, cv::ORB::HARRIS_SCORE, kPatchSize);
+  std::vector<cv::Mat> level_descriptors;
+  for (int level = 0; level < n_levels; ++level) {
+    std::vector<cv::KeyPoint>& kps = level_keypoints[level];
+    reference::computeOrientation(pyramid[level], kps);
+    if (kps.empty()) {
+      continue;
+    }
+    cv::Mat descriptors;
+    describer->compute(pyramid[level], kps, descriptors);
+    level_descriptors.push_back(descriptors);
+    const float scale = static_cast<float>(std::pow(orb.scale_factor, level));
+    for (cv::KeyPoint& kp : kps) {
+      kp.pt *= scale;
+      kp.size = kPatchSize * scale;
+      kp.octave = level;
+      out.keypoints.push_back(kp);
+    }
+  }
+  if (level_descriptors.empty()) {
+    out.descriptors.create(0, kDescriptorBytes, CV_8U);
+  } else {
+    cv::vconcat(level_descriptors, out.descriptors);
+  }
+  return out;
+}
+
+}  // namespace reference
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
