@@ -29,6 +29,15 @@ int otsuThreshold(const cv::Mat& cell);
 // The histograms of every cell of a grid_size x grid_size grid (row-major), in one pass over the image.
 std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size);
 
+// What cellThresholds() needs from call to call, so that repeated calls allocate nothing.
+struct ThresholdWorkspace {
+  std::vector<CellHistogram> histograms;
+  std::vector<std::array<std::uint32_t, 4 * 256>> partial;  // four interleaved counts per cell
+};
+
+// cellHistograms() into `ws.histograms`.
+void cellHistograms(const cv::Mat& image, int grid_size, ThresholdWorkspace& ws);
+
 // I_mid: the cell's centre pixel, local (rows/2, cols/2).
 int centreValue(const cv::Mat& cell);
 
@@ -41,6 +50,7 @@ int cellThreshold(const cv::Mat& cell, const ThresholdParams& params);
 // The grid_size x grid_size (CV_32S, row-major: row = cy) FAST thresholds of an 8-bit image, from
 // one histogram pass (cellHistograms); equal to cellThreshold() of every cell.
 cv::Mat cellThresholds(const cv::Mat& image, const ThresholdParams& params);
+void cellThresholds(const cv::Mat& image, const ThresholdParams& params, ThresholdWorkspace& ws, cv::Mat& thresholds);
 
 }  // namespace enhanced_orb
 

@@ -72,6 +72,9 @@ struct OrbParams {
   double candidate_ratio = 1.5;
   int n_levels = 8;           // pyramid levels, [1, 16]
   double scale_factor = 1.2;  // pyramid scale between levels, [1.01, 2]
+  // Threads one extraction uses, through cv::parallel_for_ (OpenCV's pool, cv::setNumThreads,
+  // bounds it); the results are the same for any count. [1, 64]
+  int threads = 1;
 };
 
 // Everything one extraction needs.

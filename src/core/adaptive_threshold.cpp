@@ -56,11 +56,11 @@ int otsuThreshold(const CellHistogram& histogram) {
   return best;
 }
 
-std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size) {
-  CV_Assert(image.type() == CV_8UC1 && grid_size >= 1);
-  std::vector<CellHistogram> histograms(static_cast<size_t>(grid_size) * grid_size, CellHistogram{});
+void cellHistograms(const cv::Mat& image, int grid_size, ThresholdWorkspace& ws) {
+  CV_Assert(image.type() == CV_8UC1 && grid_size >= 1 && grid_size <= 32);
+  const size_t cells = static_cast<size_t>(grid_size) * grid_size;
   // Cell edges as gridCell() draws them.
-  std::vector<int> x_edges(grid_size + 1), y_edges(grid_size + 1);
+  int x_edges[33], y_edges[33];
   for (int k = 0; k < grid_size; ++k) {
     x_edges[k] = gridCell(image.size(), grid_size, k, 0).x;
     y_edges[k] = gridCell(image.size(), grid_size, 0, k).y;
@@ -68,12 +68,15 @@ std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size) {
   x_edges[grid_size] = image.cols;
   y_edges[grid_size] = image.rows;
   // Four partial counts per cell, so that runs of equal pixels do not wait on one counter.
-  std::vector<std::array<std::uint32_t, 4 * 256>> partial(histograms.size());
+  ws.partial.resize(cells);
+  for (auto& counts : ws.partial) {
+    counts.fill(0);
+  }
   for (int cy = 0; cy < grid_size; ++cy) {
     for (int y = y_edges[cy]; y < y_edges[cy + 1]; ++y) {
       const std::uint8_t* row = image.ptr<std::uint8_t>(y);
       for (int cx = 0; cx < grid_size; ++cx) {
-        std::uint32_t* h = partial[static_cast<size_t>(cy) * grid_size + cx].data();
+        std::uint32_t* h = ws.partial[static_cast<size_t>(cy) * grid_size + cx].data();
         int x = x_edges[cx];
         for (; x + 4 <= x_edges[cx + 1]; x += 4) {
           ++h[row[x]];
@@ -87,12 +90,19 @@ std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size) {
       }
     }
   }
-  for (size_t c = 0; c < histograms.size(); ++c) {
+  ws.histograms.resize(cells);
+  for (size_t c = 0; c < cells; ++c) {
+    const std::uint32_t* h = ws.partial[c].data();
     for (int i = 0; i < 256; ++i) {
-      histograms[c][i] = partial[c][i] + partial[c][256 + i] + partial[c][512 + i] + partial[c][768 + i];
+      ws.histograms[c][i] = h[i] + h[256 + i] + h[512 + i] + h[768 + i];
     }
   }
-  return histograms;
+}
+
+std::vector<CellHistogram> cellHistograms(const cv::Mat& image, int grid_size) {
+  ThresholdWorkspace ws;
+  cellHistograms(image, grid_size, ws);
+  return ws.histograms;
 }
 
 int otsuThreshold(const cv::Mat& cell) {
@@ -121,21 +131,28 @@ int cellThreshold(const cv::Mat& cell, const ThresholdParams& params) {
   return truncatedThreshold(centreValue(cell), otsuThreshold(cell), params);
 }
 
-cv::Mat cellThresholds(const cv::Mat& image, const ThresholdParams& params) {
-  cv::Mat thresholds(params.grid_size, params.grid_size, CV_32S);
-  const std::vector<CellHistogram> histograms = cellHistograms(image, params.grid_size);
-  for (int cy = 0; cy < params.grid_size; ++cy) {
-    for (int cx = 0; cx < params.grid_size; ++cx) {
-      const cv::Mat cell = image(gridCell(image.size(), params.grid_size, cx, cy));
+void cellThresholds(const cv::Mat& image, const ThresholdParams& params, ThresholdWorkspace& ws, cv::Mat& thresholds) {
+  const int grid = params.grid_size;
+  thresholds.create(grid, grid, CV_32S);
+  cellHistograms(image, grid, ws);
+  for (int cy = 0; cy < grid; ++cy) {
+    for (int cx = 0; cx < grid; ++cx) {
+      const cv::Rect rect = gridCell(image.size(), grid, cx, cy);
       int& t = thresholds.at<int>(cy, cx);
-      if (cell.empty()) {
+      if (rect.empty()) {
         t = params.c_min;
         continue;
       }
-      t = truncatedThreshold(centreValue(cell),
-                             otsuThreshold(histograms[static_cast<size_t>(cy) * params.grid_size + cx]), params);
+      const int i_mid = image.at<std::uint8_t>(rect.y + rect.height / 2, rect.x + rect.width / 2);  // centreValue
+      t = truncatedThreshold(i_mid, otsuThreshold(ws.histograms[static_cast<size_t>(cy) * grid + cx]), params);
     }
   }
+}
+
+cv::Mat cellThresholds(const cv::Mat& image, const ThresholdParams& params) {
+  ThresholdWorkspace ws;
+  cv::Mat thresholds;
+  cellThresholds(image, params, ws, thresholds);
   return thresholds;
 }
 

@@ -5,12 +5,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/adaptive_threshold.h"
 #include "enhanced_orb/enhance.h"
+#include "enhanced_orb/rbrief.h"
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
 
@@ -48,28 +52,159 @@ float levelScale(double scale_factor, int level) {
   return static_cast<float>(std::pow(scale_factor, level));
 }
 
-}  // namespace
-
-double StageTimings::extractMs() const {
-  return pyramid_ms + threshold_ms + fast_ms + select_ms + orientation_ms + descriptor_ms;
+// Level sizes as buildPyramid() makes them; fewer than n_levels when a level would be empty.
+std::vector<cv::Size> pyramidSizes(cv::Size size, int n_levels, double scale_factor) {
+  std::vector<cv::Size> sizes{size};
+  for (int level = 1; level < n_levels; ++level) {
+    const float inv_scale = 1.0f / levelScale(scale_factor, level);
+    const cv::Size next(cvRound(size.width * inv_scale), cvRound(size.height * inv_scale));
+    if (next.width < 1 || next.height < 1) {
+      break;
+    }
+    sizes.push_back(next);
+  }
+  return sizes;
 }
+
+// Stronger response first; position breaks ties, so that every selection is deterministic.
+bool stronger(const cv::KeyPoint& a, const cv::KeyPoint& b) {
+  if (a.response != b.response) {
+    return a.response > b.response;
+  }
+  return a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x;
+}
+
+// A buffer the caller may still share is let go instead of being overwritten.
+void ownOrRelease(cv::Mat& m) {
+  if (!(m.u && m.u->refcount == 1)) {
+    m.release();
+  }
+}
+
+inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
+  return a > b ? a : b;
+}
+
+// The non-maximum suppression of detectCorners on one band of cells (one grid row), a whole
+// interior row at a time. b (a corner's score, 0 for other pixels) is computed with each pixel's
+// own cell threshold; a neighbour across a cell edge counts 0.
+class BandSuppression {
+public:
+  // `starts`: the first column of each cell of the band and, last, the end of the interior.
+  BandSuppression(const cv::Mat& scores, const std::vector<int>& starts, const int* thresholds,
+                  std::vector<std::uint8_t>& buffer)
+      : scores_(scores), starts_(starts), thresholds_(thresholds) {
+    const int x0 = starts.front();
+    width_ = starts.back() - x0;
+    const size_t row = static_cast<size_t>(width_) + 16;  // a zero column each side, 8-flag reads
+    buffer.assign(7 * row, 0);
+    for (int k = 0; k < 3; ++k) {
+      b_[k] = buffer.data() + k * row + 1;
+      around_[k] = buffer.data() + (3 + k) * row + 1;
+    }
+    keep_ = buffer.data() + 6 * row;
+  }
+
+  // Appends the corners of rows [y0, y1) of the band to each cell's list.
+  void run(int y0, int y1, std::vector<std::vector<cv::KeyPoint>>& cell_corners) {
+    const int x0 = starts_.front();
+    clearRow(0);
+    fillRow(y0, 1);
+    for (int y = y0; y < y1; ++y) {
+      if (y + 1 < y1) {
+        fillRow(y + 1, 2);
+      } else {
+        clearRow(2);
+      }
+      const std::uint8_t* __restrict here = b_[1];
+      const std::uint8_t* __restrict up = around_[0];
+      const std::uint8_t* __restrict down = around_[2];
+      std::uint8_t* __restrict keep = keep_;
+      const int width = width_;
+      for (int i = 0; i < width; ++i) {
+        keep[i] = here[i] > max8(max8(up[i], down[i]), max8(here[i - 1], here[i + 1])) ? 1 : 0;
+      }
+      // Across a cell edge the horizontal neighbours count 0: redo the edge columns.
+      for (size_t c = 1; c + 1 < starts_.size(); ++c) {
+        const int right = starts_[c] - x0;  // first column of cell c
+        const int left = right - 1;         // last column of cell c - 1
+        keep_[left] = here[left] > max8(max8(up[left], down[left]), here[left - 1]) ? 1 : 0;
+        keep_[right] = here[right] > max8(max8(up[right], down[right]), here[right + 1]) ? 1 : 0;
+      }
+      // Most of a row is suppressed: skip eight flags at a time.
+      size_t cell = 0;
+      for (int i = 0; i < width_; i += 8) {
+        std::uint64_t word;
+        std::memcpy(&word, keep_ + i, sizeof word);
+        for (int j = i; word != 0 && j < std::min(i + 8, width_); ++j) {
+          if (keep_[j]) {
+            while (x0 + j >= starts_[cell + 1]) {
+              ++cell;
+            }
+            cell_corners[cell].emplace_back(static_cast<float>(x0 + j), static_cast<float>(y), 7.0f, -1.0f,
+                                            static_cast<float>(here[j]));
+          }
+        }
+      }
+      std::rotate(b_, b_ + 1, b_ + 3);
+      std::rotate(around_, around_ + 1, around_ + 3);
+    }
+  }
+
+private:
+  void clearRow(int slot) {
+    std::memset(b_[slot] - 1, 0, width_ + 2);
+    std::memset(around_[slot] - 1, 0, width_ + 2);
+  }
+
+  // Slot `slot` gets row y's b and the maximum of each b's three horizontal neighbours in its cell.
+  void fillRow(int y, int slot) {
+    const int x0 = starts_.front();
+    const std::uint8_t* __restrict m = scores_.ptr<std::uint8_t>(y) + x0;
+    std::uint8_t* __restrict b = b_[slot];
+    for (size_t c = 0; c + 1 < starts_.size(); ++c) {
+      const std::uint8_t t = static_cast<std::uint8_t>(thresholds_[c]);
+      const int begin = starts_[c] - x0;
+      const int end = starts_[c + 1] - x0;
+      for (int i = begin; i < end; ++i) {
+        b[i] = m[i] > t ? static_cast<std::uint8_t>(m[i] - 1) : 0;
+      }
+    }
+    std::uint8_t* __restrict around = around_[slot];
+    const int width = width_;
+    for (int i = 0; i < width; ++i) {
+      around[i] = max8(max8(b[i - 1], b[i]), b[i + 1]);
+    }
+    for (size_t c = 1; c + 1 < starts_.size(); ++c) {
+      const int right = starts_[c] - x0;
+      around[right - 1] = max8(b[right - 2], b[right - 1]);
+      around[right] = max8(b[right], b[right + 1]);
+    }
+  }
+
+  const cv::Mat& scores_;
+  const std::vector<int>& starts_;
+  const int* thresholds_;
+  int width_ = 0;
+  std::uint8_t* b_[3];
+  std::uint8_t* around_[3];
+  std::uint8_t* keep_;
+};
+
+}  // namespace
 
 std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double scale_factor) {
   std::vector<cv::Mat> pyramid{image};
-  for (int level = 1; level < n_levels; ++level) {
-    const float inv_scale = 1.0f / levelScale(scale_factor, level);
-    const cv::Size size(cvRound(image.cols * inv_scale), cvRound(image.rows * inv_scale));
-    if (size.width < 1 || size.height < 1) {
-      break;
-    }
+  const std::vector<cv::Size> sizes = pyramidSizes(image.size(), n_levels, scale_factor);
+  for (size_t level = 1; level < sizes.size(); ++level) {
     cv::Mat next;
-    cv::resize(pyramid.back(), next, size, 0, 0, cv::INTER_LINEAR_EXACT);
+    cv::resize(pyramid.back(), next, sizes[level], 0, 0, cv::INTER_LINEAR_EXACT);
     pyramid.push_back(next);
   }
   return pyramid;
 }
 
-void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, cv::Mat& scores,
+void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorkspace& ws,
                    std::vector<cv::KeyPoint>& corners) {
   CV_Assert(level.type() == CV_8UC1 && thresholds.type() == CV_32S && thresholds.rows == thresholds.cols);
   corners.clear();
@@ -79,63 +214,61 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, cv::Mat& sco
     return;
   }
   const int grid = thresholds.rows;
-  // cv::FAST clamps its threshold to [0, 255]; no pixel scores at or below the smallest one of the
-  // level can be a corner or weigh in a suppression, so the kernel may skip those.
-  cv::Mat clamped;
-  cv::min(cv::max(thresholds, 0), 255, clamped);
-  double lowest = 0.0;
-  cv::minMaxLoc(clamped, &lowest);
+  // cv::FAST clamps its threshold to [0, 255]; no pixel scoring at or below the smallest one of
+  // the level can be a corner or weigh in a suppression, so the kernel may skip those.
+  int lowest = 255;
+  for (int i = 0; i < grid * grid; ++i) {
+    lowest = std::min(lowest, std::clamp(thresholds.at<int>(i), 0, 255));
+  }
 
   // One score per interior pixel, in a map of the level's size (only the interior is written).
-  scores.create(level.size(), CV_8UC1);
+  ws.scores.create(level.size(), CV_8UC1);
   const SimdLevel simd = activeSimdLevel();
   for (int y = interior.y; y < interior.br().y; ++y) {
     kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
-                          interior.width, scores.ptr<std::uint8_t>(y) + interior.x, static_cast<int>(lowest));
+                          interior.width, ws.scores.ptr<std::uint8_t>(y) + interior.x, lowest);
   }
 
   // cv::FAST run on each cell's window (the cell widened by 3, where its circle reads) keeps a
   // corner when its score exceeds that of each of its 8 neighbours, a neighbour counting 0 unless
-  // it lies in the cell and is a corner at the cell's threshold. Corners come cell by cell
-  // (row-major), each cell row by row.
+  // it lies in the cell and is a corner at the cell's threshold. With b = score for the cell's
+  // corners and 0 elsewhere (in and around the cell), that is b above the largest b around it.
+  // Corners come cell by cell (row-major), each cell row by row.
+  ws.cell_lists.resize(static_cast<size_t>(grid));
+  int starts_data[33];
+  int band_thresholds[32];
   for (int cy = 0; cy < grid; ++cy) {
+    // The band's non-empty cells, left to right; gridCell's cells tile the level.
+    int cells = 0;
+    cv::Rect rows;
     for (int cx = 0; cx < grid; ++cx) {
       const cv::Rect cell = gridCell(level.size(), grid, cx, cy) & interior;
-      if (cell.empty()) {
-        continue;
+      if (!cell.empty()) {
+        starts_data[cells] = cell.x;
+        band_thresholds[cells] = std::clamp(thresholds.at<int>(cy, cx), 0, 255);
+        ++cells;
+        rows = cell;
       }
-      const int t = clamped.at<int>(cy, cx);
-      const int x_end = cell.br().x;
-      const int y_end = cell.br().y;
-      auto neighbour = [&](int x, int y) -> int {
-        if (x < cell.x || x >= x_end || y < cell.y || y >= y_end) {
-          return 0;
-        }
-        const int m = scores.at<std::uint8_t>(y, x);
-        return m > t ? m - 1 : 0;
-      };
-      for (int y = cell.y; y < y_end; ++y) {
-        const std::uint8_t* row = scores.ptr<std::uint8_t>(y);
-        for (int x = cell.x; x < x_end; ++x) {
-          if (row[x] <= t) {
-            continue;
-          }
-          const int score = row[x] - 1;  // cv::FAST's corner score
-          if (score > neighbour(x - 1, y - 1) && score > neighbour(x, y - 1) && score > neighbour(x + 1, y - 1) &&
-              score > neighbour(x - 1, y) && score > neighbour(x + 1, y) && score > neighbour(x - 1, y + 1) &&
-              score > neighbour(x, y + 1) && score > neighbour(x + 1, y + 1)) {
-            corners.emplace_back(static_cast<float>(x), static_cast<float>(y), 7.0f, -1.0f, static_cast<float>(score));
-          }
-        }
-      }
+    }
+    if (cells == 0) {
+      continue;
+    }
+    starts_data[cells] = rows.br().x;
+    const std::vector<int> starts(starts_data, starts_data + cells + 1);
+    for (auto& list : ws.cell_lists) {
+      list.clear();
+    }
+    BandSuppression(ws.scores, starts, band_thresholds, ws.rows).run(rows.y, rows.br().y, ws.cell_lists);
+    for (int c = 0; c < cells; ++c) {
+      corners.insert(corners.end(), ws.cell_lists[c].begin(), ws.cell_lists[c].end());
     }
   }
 }
 
 std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds) {
-  cv::Mat scores;
+  CornerWorkspace ws;
   std::vector<cv::KeyPoint> corners;
-  detectCorners(level, thresholds, scores, corners);
+  detectCorners(level, thresholds, ws, corners);
   return corners;
 }
 
@@ -153,24 +286,21 @@ std::vector<int> levelBudgets(int total, int n_levels, double scale_factor) {
   return budgets;
 }
 
-namespace {
-
-// Stronger response first; position breaks ties, so that every selection is deterministic.
-bool stronger(const cv::KeyPoint& a, const cv::KeyPoint& b) {
-  if (a.response != b.response) {
-    return a.response > b.response;
-  }
-  return a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x;
-}
-
-}  // namespace
-
 void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n) {
   if (keypoints.size() <= n) {
     return;
   }
-  std::nth_element(keypoints.begin(), keypoints.begin() + static_cast<std::ptrdiff_t>(n), keypoints.end(), stronger);
-  keypoints.resize(n);
+  if (n == 0) {
+    keypoints.clear();
+    return;
+  }
+  thread_local std::vector<cv::KeyPoint> ranked;
+  ranked.assign(keypoints.begin(), keypoints.end());
+  std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(n - 1), ranked.end(), stronger);
+  const cv::KeyPoint weakest = ranked[n - 1];  // the order is total: exactly n are at least as strong
+  keypoints.erase(std::remove_if(keypoints.begin(), keypoints.end(),
+                                 [&weakest](const cv::KeyPoint& kp) { return stronger(weakest, kp); }),
+                  keypoints.end());
 }
 
 std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size) {
@@ -183,30 +313,47 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
   const int cell = std::max(1, cvRound(std::sqrt(static_cast<double>(size.area()) / n)));
   const int cols = (size.width + cell - 1) / cell;
   const int rows = (size.height + cell - 1) / cell;
-  const auto better = stronger;
-  std::vector<std::vector<cv::KeyPoint>> buckets(static_cast<size_t>(cols) * rows);
-  for (const cv::KeyPoint& kp : keypoints) {
+  auto bucketOf = [&](const cv::KeyPoint& kp) {
     const int bx = std::clamp(static_cast<int>(kp.pt.x) / cell, 0, cols - 1);
     const int by = std::clamp(static_cast<int>(kp.pt.y) / cell, 0, rows - 1);
-    buckets[static_cast<size_t>(by) * cols + bx].push_back(kp);
+    return by * cols + bx;
+  };
+  // All keypoints in one array, bucket after bucket, each bucket best first.
+  thread_local std::vector<int> bucket_of;
+  thread_local std::vector<int> order;
+  bucket_of.resize(keypoints.size());
+  order.resize(keypoints.size());
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    bucket_of[i] = bucketOf(keypoints[i]);
+    order[i] = static_cast<int>(i);
   }
-  for (auto& bucket : buckets) {
-    std::sort(bucket.begin(), bucket.end(), better);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return bucket_of[a] != bucket_of[b] ? bucket_of[a] < bucket_of[b] : stronger(keypoints[a], keypoints[b]);
+  });
+  thread_local std::vector<int> begin, end;
+  begin.clear();
+  end.clear();
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i == 0 || bucket_of[order[i]] != bucket_of[order[i - 1]]) {
+      begin.push_back(static_cast<int>(i));
+      end.push_back(static_cast<int>(i));
+    }
+    ++end.back();
   }
   // Round r takes the r-th best of every cell; the last, partial round keeps its best responses.
   std::vector<cv::KeyPoint> selected;
   selected.reserve(n);
-  std::vector<cv::KeyPoint> round;
-  for (size_t rank = 0; static_cast<int>(selected.size()) < n; ++rank) {
+  thread_local std::vector<cv::KeyPoint> round;
+  for (int rank = 0; static_cast<int>(selected.size()) < n; ++rank) {
     round.clear();
-    for (const auto& bucket : buckets) {
-      if (rank < bucket.size()) {
-        round.push_back(bucket[rank]);
+    for (size_t b = 0; b < begin.size(); ++b) {
+      if (begin[b] + rank < end[b]) {
+        round.push_back(keypoints[order[begin[b] + rank]]);
       }
     }
     const size_t room = n - selected.size();
     if (round.size() > room) {
-      std::partial_sort(round.begin(), round.begin() + room, round.end(), better);
+      std::partial_sort(round.begin(), round.begin() + static_cast<std::ptrdiff_t>(room), round.end(), stronger);
       round.resize(room);
     }
     selected.insert(selected.end(), round.begin(), round.end());
@@ -243,23 +390,118 @@ void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoin
   }
 }
 
-OrbExtractor::OrbExtractor(const Params& params) : params_(params) {
+// Everything one extraction works in, kept from call to call.
+struct OrbExtractor::Workspace {
+  struct Level {
+    cv::Mat image;  // levels 1.. (level 0 is the extraction's image)
+    ThresholdWorkspace threshold;
+    CornerWorkspace corners;
+    std::vector<cv::KeyPoint> keypoints;
+    cv::Mat bordered, smoothed;
+    StageTimings timings;
+  };
+  std::vector<Level> levels;
+  std::vector<cv::Mat> pyramid;
+  std::vector<std::vector<int>> stripes;  // the levels each thread takes
+};
+
+struct OrbExtractor::Pool {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<Workspace>> free;
+};
+
+OrbExtractor::OrbExtractor(const Params& params) : params_(params), pool_(std::make_shared<Pool>()) {
   const std::vector<std::string> problems = validate(params_);
   if (!problems.empty()) {
     throw std::invalid_argument(joinMessages(problems));
   }
-  // One level: the extractor hands cv::ORB one pyramid level at a time, keypoints at octave 0.
-  describer_ = cv::ORB::create(500, 1.2f, 1, kEdgeThreshold, 0, 2, cv::ORB::HARRIS_SCORE, kPatchSize);
+  orbTests();  // read cv::ORB's tests now rather than in the first frame
 }
 
+std::unique_ptr<OrbExtractor::Workspace> OrbExtractor::acquire() const {
+  {
+    std::lock_guard<std::mutex> lock(pool_->mutex);
+    if (!pool_->free.empty()) {
+      std::unique_ptr<Workspace> ws = std::move(pool_->free.back());
+      pool_->free.pop_back();
+      return ws;
+    }
+  }
+  return std::make_unique<Workspace>();
+}
+
+void OrbExtractor::release(std::unique_ptr<Workspace> ws) const {
+  std::lock_guard<std::mutex> lock(pool_->mutex);
+  pool_->free.push_back(std::move(ws));
+}
+
+namespace {
+
+// Runs work(level) for every level, on `threads` threads: levels go to threads largest first,
+// each to the least loaded one. Exceptions are passed on to the caller.
+template <typename Work>
+void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<std::vector<int>>& stripes, Work work) {
+  const int n = static_cast<int>(pyramid.size());
+  const int count = std::min(threads, n);
+  if (count <= 1) {
+    for (int level = 0; level < n; ++level) {
+      work(level);
+    }
+    return;
+  }
+  stripes.resize(count);
+  std::vector<double> load(count, 0.0);
+  for (auto& stripe : stripes) {
+    stripe.clear();
+  }
+  for (int level = 0; level < n; ++level) {  // levels shrink: in level order is largest first
+    const int least = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
+    stripes[least].push_back(level);
+    load[least] += static_cast<double>(pyramid[level].total());
+  }
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  cv::parallel_for_(
+      cv::Range(0, count),
+      [&](const cv::Range& range) {
+        for (int s = range.start; s < range.end; ++s) {
+          try {
+            for (int level : stripes[s]) {
+              work(level);
+            }
+          } catch (...) {
+            std::lock_guard<std::mutex> lock(failure_mutex);
+            failure = std::current_exception();
+          }
+        }
+      },
+      count);
+  if (failure) {
+    std::rethrow_exception(failure);
+  }
+}
+
+}  // namespace
+
 Extraction OrbExtractor::extract(const cv::Mat& gray) const {
+  Extraction out;
+  extract(gray, out);
+  return out;
+}
+
+void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   if (!gray.empty() && gray.type() != CV_8UC1) {
     throw std::invalid_argument("extract: expected CV_8UC1, got " + cv::typeToString(gray.type()));
   }
-  Extraction out;
   Stopwatch clock;
+  out.timings = StageTimings();
+  out.keypoints.clear();
+  out.lambda = 0.0;
+  out.poor_quality = false;
+  out.inverted = false;
   if (params_.enhance_enabled) {
-    EnhanceResult enhanced = enhance(gray, params_.enhance);
+    ownOrRelease(out.image);
+    EnhanceResult enhanced = enhance(gray, params_.enhance, out.image);
     out.image = enhanced.image;
     out.lambda = enhanced.lambda;
     out.poor_quality = enhanced.poor_quality;
@@ -268,73 +510,111 @@ Extraction OrbExtractor::extract(const cv::Mat& gray) const {
     out.image = gray;
   }
   out.timings.enhance_ms = clock.lap();
+  Stopwatch wall;
+
+  std::unique_ptr<Workspace> ws = acquire();
+  struct ReturnToPool {
+    const OrbExtractor* self;
+    std::unique_ptr<Workspace>& ws;
+    ~ReturnToPool() { self->release(std::move(ws)); }
+  } return_to_pool{this, ws};
 
   const OrbParams& orb = params_.orb;
-  const std::vector<cv::Mat> pyramid = buildPyramid(out.image, orb.n_levels, orb.scale_factor);
+  const std::vector<cv::Size> sizes =
+      out.image.empty() ? std::vector<cv::Size>{} : pyramidSizes(out.image.size(), orb.n_levels, orb.scale_factor);
+  const int n_levels = static_cast<int>(sizes.size());
+  ws->levels.resize(std::max(ws->levels.size(), sizes.size()));
+  ws->pyramid.resize(sizes.size());
+  for (int level = 0; level < n_levels; ++level) {
+    if (level == 0) {
+      ws->pyramid[0] = out.image;
+    } else {
+      cv::Mat& image = ws->levels[level].image;
+      image.create(sizes[level], CV_8UC1);
+      cv::resize(ws->pyramid[level - 1], image, sizes[level], 0, 0, cv::INTER_LINEAR_EXACT);
+      ws->pyramid[level] = image;
+    }
+  }
   out.timings.pyramid_ms = clock.lap();
 
-  const int n_levels = static_cast<int>(pyramid.size());
-  std::vector<std::vector<cv::KeyPoint>> level_keypoints(n_levels);
-  for (int level = 0; level < n_levels; ++level) {
-    cv::Mat thresholds =
-        orb.threshold_mode == ThresholdMode::kAdaptive
-            ? cellThresholds(pyramid[level], params_.threshold)
-            : cv::Mat(params_.threshold.grid_size, params_.threshold.grid_size, CV_32S, cv::Scalar(orb.fast_threshold));
-    out.timings.threshold_ms += clock.lap();
-    level_keypoints[level] = detectCorners(pyramid[level], thresholds);
-    out.level_thresholds.push_back(thresholds);
-    out.timings.fast_ms += clock.lap();
+  // Thresholds and corners, level by level.
+  out.level_thresholds.resize(sizes.size());
+  for (cv::Mat& t : out.level_thresholds) {
+    ownOrRelease(t);
   }
-  out.cell_thresholds = out.level_thresholds.front();
+  forEachLevel(ws->pyramid, orb.threads, ws->stripes, [&](int level) {
+    Workspace::Level& l = ws->levels[level];
+    l.timings = StageTimings();
+    Stopwatch level_clock;
+    cv::Mat& thresholds = out.level_thresholds[level];
+    if (orb.threshold_mode == ThresholdMode::kAdaptive) {
+      cellThresholds(ws->pyramid[level], params_.threshold, l.threshold, thresholds);
+    } else {
+      thresholds.create(params_.threshold.grid_size, params_.threshold.grid_size, CV_32S);
+      thresholds.setTo(cv::Scalar(orb.fast_threshold));
+    }
+    l.timings.threshold_ms = level_clock.lap();
+    detectCorners(ws->pyramid[level], thresholds, l.corners, l.keypoints);
+    l.timings.fast_ms = level_clock.lap();
+  });
+  out.cell_thresholds = n_levels > 0 ? out.level_thresholds.front() : cv::Mat();
+  for (int level = 0; level < n_levels; ++level) {
+    out.timings.threshold_ms += ws->levels[level].timings.threshold_ms;
+    out.timings.fast_ms += ws->levels[level].timings.fast_ms;
+  }
+  clock.lap();
 
   if (orb.max_features > 0) {
     // Budget per level; what a level cannot use passes on to the next one.
     const std::vector<int> budgets = levelBudgets(orb.max_features, orb.n_levels, orb.scale_factor);
     int carry = 0;
     for (int level = 0; level < n_levels; ++level) {
+      std::vector<cv::KeyPoint>& kps = ws->levels[level].keypoints;
       const int budget = budgets[level] + carry;
       if (orb.candidate_ratio > 0.0) {
-        keepStrongest(level_keypoints[level], static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
+        keepStrongest(kps, static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
       }
-      level_keypoints[level] = selectSpread(std::move(level_keypoints[level]), budget, pyramid[level].size());
-      carry = budget - static_cast<int>(level_keypoints[level].size());
+      if (static_cast<int>(kps.size()) > budget) {
+        kps = selectSpread(std::move(kps), budget, sizes[level]);
+      }
+      carry = budget - static_cast<int>(kps.size());
     }
   }
   out.timings.select_ms = clock.lap();
 
+  // Orientation and descriptors, each level into its own rows.
+  std::vector<int> first(n_levels + 1, 0);
   for (int level = 0; level < n_levels; ++level) {
-    computeOrientation(pyramid[level], level_keypoints[level]);
+    first[level + 1] = first[level] + static_cast<int>(ws->levels[level].keypoints.size());
   }
-  out.timings.orientation_ms = clock.lap();
-
-  std::vector<cv::Mat> level_descriptors;
-  for (int level = 0; level < n_levels; ++level) {
-    std::vector<cv::KeyPoint>& kps = level_keypoints[level];
-    if (kps.empty()) {
-      continue;
+  ownOrRelease(out.descriptors);
+  out.descriptors.create(first[n_levels], kDescriptorBytes, CV_8U);
+  out.keypoints.resize(static_cast<size_t>(first[n_levels]));
+  forEachLevel(ws->pyramid, orb.threads, ws->stripes, [&](int level) {
+    Workspace::Level& l = ws->levels[level];
+    if (l.keypoints.empty()) {
+      return;
     }
-    const size_t count = kps.size();
-    cv::Mat descriptors;
-    describer_->compute(pyramid[level], kps, descriptors);
-    // Every keypoint lies kEdgeThreshold inside the level, so cv::ORB must keep them all, in order.
-    CV_Assert(kps.size() == count && descriptors.rows == static_cast<int>(count));
-    level_descriptors.push_back(descriptors);
-
+    Stopwatch level_clock;
+    computeOrientation(ws->pyramid[level], l.keypoints);
+    l.timings.orientation_ms = level_clock.lap();
+    smoothForDescription(ws->pyramid[level], l.bordered, l.smoothed);
+    describe(l.smoothed, l.keypoints, out.descriptors, first[level]);
     const float scale = levelScale(orb.scale_factor, level);
-    for (cv::KeyPoint& kp : kps) {
+    for (size_t i = 0; i < l.keypoints.size(); ++i) {
+      cv::KeyPoint kp = l.keypoints[i];
       kp.pt *= scale;
       kp.size = kPatchSize * scale;
       kp.octave = level;
-      out.keypoints.push_back(kp);
+      out.keypoints[first[level] + i] = kp;
     }
+    l.timings.descriptor_ms = level_clock.lap();
+  });
+  for (int level = 0; level < n_levels; ++level) {
+    out.timings.orientation_ms += ws->levels[level].timings.orientation_ms;
+    out.timings.descriptor_ms += ws->levels[level].timings.descriptor_ms;
   }
-  if (level_descriptors.empty()) {
-    out.descriptors.create(0, kDescriptorBytes, CV_8U);
-  } else {
-    cv::vconcat(level_descriptors, out.descriptors);
-  }
-  out.timings.descriptor_ms = clock.lap();
-  return out;
+  out.timings.extract_ms = wall.lap();
 }
 
 }  // namespace enhanced_orb

@@ -82,6 +82,7 @@ std::vector<std::string> validate(const OrbParams& p) {
   checkRange(out, "n_levels", p.n_levels, 1, 16);
   checkRange(out, "scale_factor", p.scale_factor, 1.01, 2.0);
   checkRange(out, "candidate_ratio", p.candidate_ratio, 0.0, 100.0);
+  checkRange(out, "threads", p.threads, 1, 64);
   return out;
 }
 
@@ -177,6 +178,7 @@ const std::vector<Field>& fields() {
       number("candidate_ratio", [](Params& p) -> double& { return p.orb.candidate_ratio; }),
       number("n_levels", [](Params& p) -> int& { return p.orb.n_levels; }),
       number("scale_factor", [](Params& p) -> double& { return p.orb.scale_factor; }),
+      number("threads", [](Params& p) -> int& { return p.orb.threads; }),
   };
   return all;
 }

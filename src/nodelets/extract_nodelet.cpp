@@ -57,6 +57,7 @@ private:
     p.orb.candidate_ratio = config.candidate_ratio;
     p.orb.n_levels = config.n_levels;
     p.orb.scale_factor = config.scale_factor;
+    p.orb.threads = config.threads;
     parseThresholdMode(config.threshold_mode, p.orb.threshold_mode);
     return p;
   }

@@ -63,6 +63,7 @@ TEST(ConfigAgreement, ExtractDefaultsAreTheDefaultMode) {
   EXPECT_DOUBLE_EQ(c.candidate_ratio, p.orb.candidate_ratio);
   EXPECT_EQ(c.n_levels, p.orb.n_levels);
   EXPECT_DOUBLE_EQ(c.scale_factor, p.orb.scale_factor);
+  EXPECT_EQ(c.threads, p.orb.threads);
 }
 
 TEST(ConfigAgreement, RangesAreTheLibrarys) {
@@ -85,4 +86,5 @@ TEST(ConfigAgreement, RangesAreTheLibrarys) {
   expectSameRange("candidate_ratio", xlo.candidate_ratio, xhi.candidate_ratio);
   expectSameRange("n_levels", xlo.n_levels, xhi.n_levels);
   expectSameRange("scale_factor", xlo.scale_factor, xhi.scale_factor);
+  expectSameRange("threads", xlo.threads, xhi.threads);
 }

@@ -106,7 +106,7 @@ TEST(ToMessage, CarriesEveryField) {
   cv::randu(e.descriptors, 0, 256);
   e.cell_thresholds = (cv::Mat_<int>(2, 2) << 7, 8, 9, 10);
   e.level_thresholds = {e.cell_thresholds, e.cell_thresholds, e.cell_thresholds};
-  e.timings.fast_ms = 2.5;
+  e.timings.extract_ms = 2.5;
   std_msgs::Header header;
   header.stamp = ros::Time(5, 6);
   header.frame_id = "cam0";

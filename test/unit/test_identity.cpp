@@ -143,7 +143,7 @@ TEST(Corners, ScoreMapDetectorEqualsCvFastPerCell) {
   std::vector<cv::Mat> images = eurocFrames(10);
   images.push_back(test::syntheticScene());
   cv::RNG rng(5);
-  cv::Mat scores;
+  CornerWorkspace ws;
   std::vector<cv::KeyPoint> ours;
   for (SimdLevel simd : supportedSimdLevels()) {
     setSimdLevel(simd);
@@ -154,7 +154,7 @@ TEST(Corners, ScoreMapDetectorEqualsCvFastPerCell) {
         rng.fill(thresholds, cv::RNG::UNIFORM, 1, 40);
         thresholds.at<int>(0, 0) = 0;
         thresholds.at<int>(4, 4) = 255;
-        detectCorners(level, thresholds, scores, ours);
+        detectCorners(level, thresholds, ws, ours);
         expectSameKeypoints(ours, reference::detectCorners(level, thresholds),
                             std::string(toString(simd)) + ", level " + std::to_string(level.cols));
       }
@@ -163,6 +163,7 @@ TEST(Corners, ScoreMapDetectorEqualsCvFastPerCell) {
 }
 
 TEST(Extractor, IdenticalToTheReferenceOnEveryEurocFrameInEveryModeAndBudget) {
+  cv::setNumThreads(2);  // OpenCV's pool must have room for the second thread
   const std::vector<cv::Mat> frames = eurocFrames(1);
   if (frames.empty()) {
     GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir() << " (../shared absent): skipped";
@@ -171,11 +172,18 @@ TEST(Extractor, IdenticalToTheReferenceOnEveryEurocFrameInEveryModeAndBudget) {
     for (int budget : {0, 1000}) {
       Params params = mode.params;
       params.orb.max_features = budget;
+      Params two_threads = params;
+      two_threads.orb.threads = 2;
       const OrbExtractor extractor(params);
+      const OrbExtractor parallel(two_threads);
+      Extraction reused;  // the buffer-reusing call, frame after frame
       for (size_t i = 0; i < frames.size(); ++i) {
-        expectSameExtraction(
-            extractor.extract(frames[i]), reference::extract(frames[i], params),
-            std::string(mode.name) + ", budget " + std::to_string(budget) + ", frame " + std::to_string(i));
+        const Extraction expected = reference::extract(frames[i], params);
+        const std::string what =
+            std::string(mode.name) + ", budget " + std::to_string(budget) + ", frame " + std::to_string(i);
+        expectSameExtraction(extractor.extract(frames[i]), expected, what);
+        parallel.extract(frames[i], reused);
+        expectSameExtraction(reused, expected, what + ", 2 threads, reused buffers");
       }
     }
   }
@@ -183,6 +191,7 @@ TEST(Extractor, IdenticalToTheReferenceOnEveryEurocFrameInEveryModeAndBudget) {
 
 TEST(Extractor, IdenticalToTheReferenceAtEveryInstructionSet) {
   SimdScope scope;
+  cv::setNumThreads(2);
   const std::vector<cv::Mat> frames = eurocFrames(19);
   if (frames.empty()) {
     GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir() << " (../shared absent): skipped";
@@ -197,10 +206,14 @@ TEST(Extractor, IdenticalToTheReferenceAtEveryInstructionSet) {
       }
       for (SimdLevel simd : supportedSimdLevels()) {
         setSimdLevel(simd);
-        const OrbExtractor extractor(params);
-        for (size_t i = 0; i < frames.size(); ++i) {
-          expectSameExtraction(extractor.extract(frames[i]), expected[i],
-                               std::string(mode.name) + ", budget " + std::to_string(budget) + ", " + toString(simd));
+        for (int threads : {1, 2}) {
+          params.orb.threads = threads;
+          const OrbExtractor extractor(params);
+          for (size_t i = 0; i < frames.size(); ++i) {
+            expectSameExtraction(extractor.extract(frames[i]), expected[i],
+                                 std::string(mode.name) + ", budget " + std::to_string(budget) + ", " + toString(simd) +
+                                     ", " + std::to_string(threads) + " threads");
+          }
         }
       }
     }

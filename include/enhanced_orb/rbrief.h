@@ -1,0 +1,37 @@
+// rBRIEF, ORB's descriptor (Rublee et al., ICCV 2011): 256 comparisons of pairs of points of the
+// smoothed patch around a keypoint, the pairs rotated by the keypoint's angle. The descriptors are
+// bit for bit those of cv::ORB.
+#ifndef ENHANCED_ORB_RBRIEF_H
+#define ENHANCED_ORB_RBRIEF_H
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace enhanced_orb {
+
+// One test: bit = I(x1, y1) < I(x2, y2), offsets from the keypoint before rotation.
+struct BriefTest {
+  int x1, y1, x2, y2;
+};
+
+// The 256 tests of cv::ORB (WTA_K 2, patch 31), bit k of byte i being test 8 i + k. They are read
+// off the installed OpenCV the first time they are needed (about 50 ms): each test's two points
+// are where a single bright or dark pixel, after cv::ORB's smoothing, sets its bit. Throws
+// std::runtime_error when what is read off does not reproduce cv::ORB's descriptors.
+const std::array<BriefTest, 256>& orbTests();
+
+// cv::ORB's smoothing before description, to the bit: a 7x7 Gaussian, sigma 2, of the level as a
+// view with a reflect-101 border (`bordered` is a workspace).
+void smoothForDescription(const cv::Mat& level, cv::Mat& bordered, cv::Mat& smoothed);
+
+// Writes the 32-byte descriptor of each keypoint (level coordinates, integer positions, angle in
+// degrees) to rows first_row.. of `descriptors` (CV_8U, 32 columns), reading `smoothed`. Every
+// keypoint must lie at least 19 pixels inside the level.
+void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors, int first_row);
+
+}  // namespace enhanced_orb
+
+#endif  // ENHANCED_ORB_RBRIEF_H

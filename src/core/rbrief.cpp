@@ -1,0 +1,171 @@
+#include "enhanced_orb/rbrief.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace enhanced_orb {
+namespace {
+
+constexpr int kProbeRadius = 17;  // the tests lie within 13 pixels; the smoothing reaches 3 more
+constexpr int kProbeSize = 2 * kProbeRadius + 2 * 20;
+
+cv::Ptr<cv::ORB> openCvDescriber() {
+  return cv::ORB::create(500, 1.2f, 1, 19, 0, 2, cv::ORB::HARRIS_SCORE, 31);
+}
+
+// For one bit: the probe positions that set it, as a box and a sum.
+struct ProbeSet {
+  int count = 0;
+  int min_x = 1000, max_x = -1000, min_y = 1000, max_y = -1000;
+  long sum_x = 0, sum_y = 0;
+
+  void add(int x, int y) {
+    ++count;
+    min_x = std::min(min_x, x);
+    max_x = std::max(max_x, x);
+    min_y = std::min(min_y, y);
+    max_y = std::max(max_y, y);
+    sum_x += x;
+    sum_y += y;
+  }
+};
+
+// One coordinate of a test's points. A bright probe sets the bit near point 2, a dark one near
+// point 1; on the side away from the other point each set reaches exactly 3 pixels (the smoothing's
+// radius) beyond its point, and is symmetric about it along an axis where both points agree.
+void solveAxis(const ProbeSet& bright, const ProbeSet& dark, int bright_min, int bright_max, int dark_min, int dark_max,
+               long bright_sum, long dark_sum, int& c1, int& c2) {
+  // sign(c1 - c2) from the sets' centroids: dark_sum / dark.count vs bright_sum / bright.count.
+  const long difference = dark_sum * bright.count - bright_sum * dark.count;
+  if (difference > 0) {
+    c2 = bright_min + 3;
+    c1 = dark_max - 3;
+  } else if (difference < 0) {
+    c2 = bright_max - 3;
+    c1 = dark_min + 3;
+  } else {
+    c2 = (bright_min + bright_max) / 2;
+    c1 = (dark_min + dark_max) / 2;
+  }
+}
+
+std::array<BriefTest, 256> probeTests() {
+  cv::Ptr<cv::ORB> orb = openCvDescriber();
+  const cv::Point centre(kProbeSize / 2, kProbeSize / 2);
+  std::array<ProbeSet, 256> bright, dark;
+  cv::Mat image(kProbeSize, kProbeSize, CV_8UC1);
+  cv::Mat descriptor;
+  for (int dy = -kProbeRadius; dy <= kProbeRadius; ++dy) {
+    for (int dx = -kProbeRadius; dx <= kProbeRadius; ++dx) {
+      for (int polarity = 0; polarity < 2; ++polarity) {
+        image.setTo(polarity == 0 ? 0 : 255);
+        image.at<std::uint8_t>(centre.y + dy, centre.x + dx) = polarity == 0 ? 255 : 0;
+        std::vector<cv::KeyPoint> keypoint{cv::KeyPoint(cv::Point2f(centre), 31.0f, 0.0f)};
+        orb->compute(image, keypoint, descriptor);
+        if (keypoint.size() != 1) {
+          throw std::runtime_error("rBRIEF: cv::ORB dropped the probe keypoint");
+        }
+        for (int bit = 0; bit < 256; ++bit) {
+          if (descriptor.at<std::uint8_t>(0, bit / 8) & (1 << (bit % 8))) {
+            (polarity == 0 ? bright : dark)[bit].add(dx, dy);
+          }
+        }
+      }
+    }
+  }
+  std::array<BriefTest, 256> tests{};
+  for (int bit = 0; bit < 256; ++bit) {
+    const ProbeSet& b = bright[bit];
+    const ProbeSet& d = dark[bit];
+    if (b.count == 0 || d.count == 0) {
+      throw std::runtime_error("rBRIEF: test " + std::to_string(bit) + " of cv::ORB never fires");
+    }
+    BriefTest& t = tests[bit];
+    solveAxis(b, d, b.min_x, b.max_x, d.min_x, d.max_x, b.sum_x, d.sum_x, t.x1, t.x2);
+    solveAxis(b, d, b.min_y, b.max_y, d.min_y, d.max_y, b.sum_y, d.sum_y, t.y1, t.y2);
+  }
+  return tests;
+}
+
+// Whether `tests` give cv::ORB's descriptors on a textured image, at every angle.
+void verify() {
+  cv::Mat image(160, 160, CV_8UC1);
+  cv::RNG rng(12345);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  std::vector<cv::KeyPoint> keypoints;
+  for (int i = 0; i < 400; ++i) {
+    keypoints.emplace_back(
+        cv::Point2f(static_cast<float>(rng.uniform(40, 120)), static_cast<float>(rng.uniform(40, 120))), 31.0f,
+        i < 8 ? 45.0f * i : rng.uniform(0.0f, 360.0f));
+  }
+  std::vector<cv::KeyPoint> theirs_kps = keypoints;
+  cv::Mat theirs;
+  openCvDescriber()->compute(image, theirs_kps, theirs);
+  cv::Mat bordered, smoothed;
+  smoothForDescription(image, bordered, smoothed);
+  cv::Mat ours(static_cast<int>(keypoints.size()), 32, CV_8UC1);
+  describe(smoothed, keypoints, ours, 0);
+  if (theirs_kps.size() != keypoints.size() || cv::norm(ours, theirs, cv::NORM_HAMMING) != 0) {
+    throw std::runtime_error("rBRIEF: the tests read off cv::ORB do not reproduce its descriptors");
+  }
+}
+
+const std::array<BriefTest, 256>* g_tests = nullptr;
+
+}  // namespace
+
+const std::array<BriefTest, 256>& orbTests() {
+  static std::once_flag once;
+  static std::array<BriefTest, 256> tests;
+  std::call_once(once, [] {
+    tests = probeTests();
+    g_tests = &tests;
+    verify();
+  });
+  return tests;
+}
+
+void smoothForDescription(const cv::Mat& level, cv::Mat& bordered, cv::Mat& smoothed) {
+  // cv::ORB blurs each level as a view into its bordered pyramid, and OpenCV filters such a view
+  // (reading the pixels around it) by another path than a whole image, which rounds differently.
+  constexpr int r = 3;
+  cv::copyMakeBorder(level, bordered, r, r, r, r, cv::BORDER_REFLECT_101);
+  cv::GaussianBlur(bordered(cv::Rect(r, r, level.cols, level.rows)), smoothed, cv::Size(7, 7), 2, 2,
+                   cv::BORDER_REFLECT_101);
+}
+
+void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
+              int first_row) {
+  const std::array<BriefTest, 256>& tests = g_tests ? *g_tests : orbTests();
+  const int step = static_cast<int>(smoothed.step);
+  for (size_t k = 0; k < keypoints.size(); ++k) {
+    const cv::KeyPoint& kp = keypoints[k];
+    // The rotation as cv::ORB rounds it: single-precision angle, cosine and sine, products and sums.
+    const float angle = kp.angle * static_cast<float>(CV_PI / 180.f);
+    const float a = std::cos(angle);
+    const float b = std::sin(angle);
+    const std::uint8_t* centre = smoothed.ptr<std::uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
+    auto at = [&](int x, int y) {
+      const float fx = static_cast<float>(x);
+      const float fy = static_cast<float>(y);
+      return centre[cvRound(fx * b + fy * a) * step + cvRound(fx * a - fy * b)];
+    };
+    std::uint8_t* out = descriptors.ptr<std::uint8_t>(first_row + static_cast<int>(k));
+    for (int byte = 0; byte < 32; ++byte) {
+      int value = 0;
+      for (int bit = 0; bit < 8; ++bit) {
+        const BriefTest& t = tests[8 * byte + bit];
+        value |= (at(t.x1, t.y1) < at(t.x2, t.y2)) << bit;
+      }
+      out[byte] = static_cast<std::uint8_t>(value);
+    }
+  }
+}
+
+}  // namespace enhanced_orb
