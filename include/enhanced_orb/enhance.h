@@ -52,6 +52,8 @@ std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tile
 // f, and the curves of the four nearest tile centres are blended bilinearly (as CLAHE does). One
 // LUT gives a global curve. Returns CV_32F.
 cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles);
+// The same into `out`, of `type` CV_32F or CV_8U (rounded and saturated as convertTo does).
+void applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int type);
 
 struct EnhanceResult {
   cv::Mat image;              // enhanced 8-bit gray image, same size as the input
@@ -64,8 +66,10 @@ struct EnhanceResult {
 // The whole enhancement of an 8-bit gray image (ALGORITHM.md section 1). An empty input gives an
 // empty result. Throws std::invalid_argument when `gray` is not CV_8UC1 or `params` is invalid.
 // `output`, when it has the input's size and type CV_8UC1, receives the result in place (a view of
-// a message buffer, say); otherwise a new image is allocated. It may be `gray` itself.
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output = cv::Mat());
+// a message buffer, say); otherwise a new image is allocated. It may be `gray` itself. With
+// threads > 1 horizontal bands are worked on side by side (cv::parallel_for_); the result is the
+// same for any count.
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output = cv::Mat(), int threads = 1);
 
 }  // namespace enhanced_orb
 

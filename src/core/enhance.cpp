@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -134,28 +135,74 @@ GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double 
   return lut;
 }
 
-std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tiles) {
-  CV_Assert(f.type() == CV_32FC1 && tiles >= 1);
-  thread_local cv::Mat gx, gy, weight;
-  cv::Sobel(f, gx, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
-  cv::Sobel(f, gy, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
-  cv::magnitude(gx, gy, weight);
-  cv::sqrt(weight, weight);
-  std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
+namespace {
+
+// Runs fn(first_row, end_row) on `bands` horizontal bands of `rows` rows, side by side when there
+// are several. Band k starts at starts[k]; starts has bands + 1 entries, the last one `rows`.
+template <typename Fn>
+void forEachBand(const std::vector<int>& starts, Fn fn) {
+  const int bands = static_cast<int>(starts.size()) - 1;
+  if (bands <= 1) {
+    fn(starts.front(), starts.back());
+    return;
+  }
+  cv::parallel_for_(
+      cv::Range(0, bands),
+      [&](const cv::Range& range) {
+        for (int k = range.start; k < range.end; ++k) {
+          fn(starts[k], starts[k + 1]);
+        }
+      },
+      bands);
+}
+
+// The tile row of image row y, in a tiles x tiles grid over `rows` rows.
+int tileRow(int y, int tiles, int rows) {
+  return std::min(tiles - 1, y * tiles / rows);
+}
+
+// Band edges for `bands` bands that each hold whole tile rows (so that each tile's histogram is
+// summed by one thread, pixel by pixel in the order of a single pass).
+std::vector<int> bandStarts(int rows, int tiles, int bands) {
+  bands = std::max(1, std::min({bands, tiles, rows}));
+  std::vector<int> starts{0};
+  for (int k = 1; k < bands; ++k) {
+    const int first_tile = k * tiles / bands;
+    int y = starts.back();
+    while (y < rows && tileRow(y, tiles, rows) < first_tile) {
+      ++y;
+    }
+    starts.push_back(y);
+  }
+  starts.push_back(rows);
+  return starts;
+}
+
+// Rows [y0, y1) of edgeWeightedHistograms: the weights sqrt(|grad f|) of those rows into `weight`
+// (whole-image buffers, the Sobel filters reading f around the band as a whole-image pass does),
+// added to the histograms of their tiles.
+void addEdgeWeights(const cv::Mat& f, int tiles, int y0, int y1, cv::Mat& gx, cv::Mat& gy, cv::Mat& weight,
+                    std::vector<WeightedHistogram>& histograms) {
+  const cv::Rect band(0, y0, f.cols, y1 - y0);
+  cv::Mat gx_band = gx(band), gy_band = gy(band), weight_band = weight(band);
+  cv::Sobel(f(band), gx_band, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
+  cv::Sobel(f(band), gy_band, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
+  cv::magnitude(gx_band, gy_band, weight_band);
+  cv::sqrt(weight_band, weight_band);
   // Tile boundaries along x, so that each row is walked tile by tile without a per-pixel lookup.
-  std::vector<int> x_end(tiles);
+  int x_end[16];
   for (int x = 0, t = 0; t < tiles; ++t) {
     while (x < f.cols && x * tiles / f.cols == t) {
       ++x;
     }
     x_end[t] = x;
   }
-  for (int y = 0; y < f.rows; ++y) {
+  for (int y = y0; y < y1; ++y) {
     const float* fr = f.ptr<float>(y);
     const float* wr = weight.ptr<float>(y);
-    WeightedHistogram* row_tiles = &histograms[static_cast<size_t>(std::min(tiles - 1, y * tiles / f.rows)) * tiles];
+    WeightedHistogram* row_tiles = &histograms[static_cast<size_t>(tileRow(y, tiles, f.rows)) * tiles];
     for (int t = 0, x = 0; t < tiles; ++t) {
-      WeightedHistogram& h = row_tiles[t];
+      double* h = row_tiles[t].data();
       for (; x < x_end[t]; ++x) {
         // round(f): f >= 0 (a blur of an 8-bit image), rounded half up in double as std::lround does.
         const int bin = std::min(255, std::max(0, static_cast<int>(static_cast<double>(fr[x]) + 0.5)));
@@ -163,19 +210,23 @@ std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tile
       }
     }
   }
+}
+
+}  // namespace
+
+std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tiles) {
+  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && tiles <= 16);
+  cv::Mat gx(f.size(), CV_32F), gy(f.size(), CV_32F), weight(f.size(), CV_32F);
+  std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
+  addEdgeWeights(f, tiles, 0, f.rows, gx, gy, weight, histograms);
   return histograms;
 }
 
-cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles) {
-  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && luts.size() == static_cast<size_t>(tiles) * tiles);
-  // Each curve as value and slope per level, read at f by linear interpolation.
-  std::vector<std::array<float, 512>> curves(luts.size());
-  for (size_t t = 0; t < luts.size(); ++t) {
-    for (int i = 0; i < 256; ++i) {
-      curves[t][2 * i] = luts[t][i];
-      curves[t][2 * i + 1] = i < 255 ? luts[t][i + 1] - luts[t][i] : 0.0f;
-    }
-  }
+namespace {
+
+// Rows [y0, y1) of applyTileCurves into `out` (already of f's size, CV_32F or CV_8U).
+void applyTileCurveRows(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int y0, int y1) {
+  const int type = out.depth();
   // Tile centres at (k + 1/2) of a tile; pixels beyond the outer centres use the nearest curves.
   auto neighbours = [tiles](int pos, int length, int& k0, int& k1, float& w1) {
     const float g = (pos + 0.5f) * tiles / length - 0.5f;
@@ -183,36 +234,101 @@ cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int
     k1 = std::min(k0 + 1, tiles - 1);
     w1 = std::clamp(g - static_cast<float>(k0), 0.0f, 1.0f);
   };
-  std::vector<int> x0(f.cols), x1(f.cols);
-  std::vector<float> wx(f.cols);
+  // The four curves of a pixel, read at the same level, side by side in one vector: for each pair
+  // of neighbouring tile rows (y0, y1) and columns (x0, x1), a table of 256 levels holding the
+  // value and the slope of curves (y0, x0), (y0, x1), (y1, x0), (y1, x1). Each lane's arithmetic
+  // is that of one curve read alone.
+  typedef float Float4 __attribute__((vector_size(16)));
+  struct Level {
+    Float4 value, slope;
+  };
+  auto pairIndex = [tiles](int k0, int k1) { return k0 + (k1 > k0 ? tiles : 0); };  // 2 tiles - 1 pairs
+  const int pairs = 2 * tiles;
+  // Buffers kept per thread; the loops below use plain pointers into them (a thread_local reached
+  // from a shared library costs a call per access).
+  thread_local std::vector<Level> table_buffer;
+  thread_local std::vector<char> built_buffer;
+  table_buffer.resize(static_cast<size_t>(pairs) * pairs * 256);
+  built_buffer.assign(static_cast<size_t>(pairs) * pairs, 0);
+  Level* const tables = table_buffer.data();
+  char* const built = built_buffer.data();
+  auto table = [&](int y0, int y1, int x0, int x1) -> const Level* {
+    const size_t t = static_cast<size_t>(pairIndex(y0, y1)) * pairs + pairIndex(x0, x1);
+    Level* levels = &tables[t * 256];
+    if (!built[t]) {
+      const GammaLut* curve[4] = {&luts[y0 * tiles + x0], &luts[y0 * tiles + x1], &luts[y1 * tiles + x0],
+                                  &luts[y1 * tiles + x1]};
+      for (int i = 0; i < 256; ++i) {
+        for (int k = 0; k < 4; ++k) {
+          levels[i].value[k] = (*curve[k])[i];
+          levels[i].slope[k] = i < 255 ? (*curve[k])[i + 1] - (*curve[k])[i] : 0.0f;
+        }
+      }
+      built[t] = 1;
+    }
+    return levels;
+  };
+  thread_local std::vector<int> x0_buffer, x1_buffer;
+  thread_local std::vector<Float4> wx_buffer;
+  x0_buffer.resize(f.cols);
+  x1_buffer.resize(f.cols);
+  wx_buffer.resize(f.cols);
+  int* const x0 = x0_buffer.data();
+  int* const x1 = x1_buffer.data();
+  Float4* const wx = wx_buffer.data();  // (1 - w, w, 1 - w, w) of each column
   for (int x = 0; x < f.cols; ++x) {
-    neighbours(x, f.cols, x0[x], x1[x], wx[x]);
+    float w = 0.0f;
+    neighbours(x, f.cols, x0[x], x1[x], w);
+    wx[x] = Float4{1.0f - w, w, 1.0f - w, w};
   }
-  cv::Mat out(f.size(), CV_32F);
-  for (int y = 0; y < f.rows; ++y) {
-    int y0 = 0, y1 = 0;
+  for (int y = y0; y < y1; ++y) {
+    int ty0 = 0, ty1 = 0;
     float wy = 0.0f;
-    neighbours(y, f.rows, y0, y1, wy);
+    neighbours(y, f.rows, ty0, ty1, wy);
     const float* fr = f.ptr<float>(y);
-    float* o = out.ptr<float>(y);
-    const std::array<float, 512>* top_row = &curves[static_cast<size_t>(y0) * tiles];
-    const std::array<float, 512>* bottom_row = &curves[static_cast<size_t>(y1) * tiles];
-    for (int x = 0; x < f.cols; ++x) {
-      // Each curve read at f by linear interpolation between levels: the level and the fraction
-      // are the same for the four curves.
-      const float c = std::clamp(fr[x], 0.0f, 255.0f);
-      const int i = std::min(254, static_cast<int>(c));
-      const float frac = c - static_cast<float>(i);
-      auto read = [i, frac](const std::array<float, 512>& curve) { return curve[2 * i] + frac * curve[2 * i + 1]; };
-      const float top = (1.0f - wx[x]) * read(top_row[x0[x]]) + wx[x] * read(top_row[x1[x]]);
-      const float bottom = (1.0f - wx[x]) * read(bottom_row[x0[x]]) + wx[x] * read(bottom_row[x1[x]]);
-      o[x] = (1.0f - wy) * top + wy * bottom;
+    float* o = type == CV_32F ? out.ptr<float>(y) : nullptr;
+    std::uint8_t* o8 = type == CV_8U ? out.ptr<std::uint8_t>(y) : nullptr;
+    for (int x = 0; x < f.cols;) {
+      // A run of columns between two tile centres shares its four curves.
+      const Level* levels = table(ty0, ty1, x0[x], x1[x]);
+      const int run_x0 = x0[x];
+      const int run_x1 = x1[x];
+      for (; x < f.cols && x0[x] == run_x0 && x1[x] == run_x1; ++x) {
+        // Each curve read at f by linear interpolation between levels, then blended bilinearly.
+        const float c = std::clamp(fr[x], 0.0f, 255.0f);
+        const int i = std::min(254, static_cast<int>(c));
+        const float frac = c - static_cast<float>(i);
+        const Float4 read = levels[i].value + frac * levels[i].slope;
+        const Float4 weighted = wx[x] * read;
+        const float top = weighted[0] + weighted[1];
+        const float bottom = weighted[2] + weighted[3];
+        const float value = (1.0f - wy) * top + wy * bottom;
+        if (o) {
+          o[x] = value;
+        } else {
+          o8[x] = cv::saturate_cast<std::uint8_t>(value);  // as convertTo rounds
+        }
+      }
     }
   }
+}
+
+}  // namespace
+
+void applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int type) {
+  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && luts.size() == static_cast<size_t>(tiles) * tiles);
+  CV_Assert(type == CV_32F || type == CV_8U);
+  out.create(f.size(), type);
+  applyTileCurveRows(f, luts, tiles, out, 0, f.rows);
+}
+
+cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles) {
+  cv::Mat out;
+  applyTileCurves(f, luts, tiles, out, CV_32F);
   return out;
 }
 
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output) {
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads) {
   if (!gray.empty() && gray.type() != CV_8UC1) {
     throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
   }
@@ -241,21 +357,61 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
 
   // Float buffers are reused from call to call on each thread: fresh ones of this size would be
   // fresh pages from the kernel, whose faults cost more than the arithmetic.
-  thread_local struct { cv::Mat input_f, f, e, f_rounded, curve_f; } scratch;
+  thread_local struct { cv::Mat input_f, f, e, f_rounded, curve_f, gx, gy, weight; } scratch;
+  // (The lambdas below run on other threads: they must reach these buffers through references,
+  // not by the thread_local's name.)
   cv::Mat& input_f = scratch.input_f;
   cv::Mat& f = scratch.f;
   cv::Mat& e = scratch.e;
+  cv::Mat& gx = scratch.gx;
+  cv::Mat& gy = scratch.gy;
+  cv::Mat& weight = scratch.weight;
+  input_f.create(gray.size(), CV_32F);
+  f.create(gray.size(), CV_32F);
+
+  // With threads > 1 the image is cut into horizontal bands worked on side by side; a filter
+  // reads the rows around its band, as a whole-image pass does, so the result is the same.
+  const bool equalize = result.poor_quality && params.tone_curve == ToneCurve::kEqualize;
+  const int tiles = std::min({params.tone_tiles, gray.cols, gray.rows});
+  const std::vector<int> starts = bandStarts(gray.rows, equalize ? tiles : gray.rows, threads);
+  auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
 
   // Eqs 8-9: f = I * h, kept in floating point.
-  input.convertTo(input_f, CV_32F);
-  cv::GaussianBlur(input_f, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
-                   cv::BORDER_REFLECT_101);
+  forEachBand(starts, [&](int y0, int y1) {
+    cv::Mat dst = input_f(band(y0, y1));
+    input(band(y0, y1)).convertTo(dst, CV_32F);
+  });
+  forEachBand(starts, [&](int y0, int y1) {
+    cv::Mat dst = f(band(y0, y1));
+    cv::GaussianBlur(input_f(band(y0, y1)), dst, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma,
+                     params.blur_sigma, cv::BORDER_REFLECT_101);
+  });
 
   // Eqs 17-20: G_mask = I - f (eq 18), T_mask = LUT(f) - f (eq 17) and
   // E = I + sharpening G_mask + beta T_mask (eqs 19-20; T_mask only for poor images), computed as
   // (1 + sharpening) I - (sharpening + beta) f + beta LUT(f) in vectorised passes.
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
+  std::vector<GammaLut> luts;
+  if (equalize) {
+    // The default mode's curves, one per tile, read between levels: a dark frame's filtered
+    // values carry more than its few integer levels.
+    for (cv::Mat* m : {&gx, &gy, &weight}) {
+      m->create(gray.size(), CV_32F);
+    }
+    std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
+    forEachBand(starts, [&](int y0, int y1) { addEdgeWeights(f, tiles, y0, y1, gx, gy, weight, histograms); });
+    for (const WeightedHistogram& h : histograms) {
+      luts.push_back(equalizingLut(h, params.alpha, params.tau));
+    }
+    if (s == -1.0 && b == 1.0) {
+      // E = 0 I - 0 f + LUT(f) = LUT(f) exactly: the curves write the 8-bit image themselves.
+      result.image = output;
+      result.image.create(gray.size(), CV_8UC1);
+      forEachBand(starts, [&](int y0, int y1) { applyTileCurveRows(f, luts, tiles, result.image, y0, y1); });
+      return result;
+    }
+  }
   cv::addWeighted(input_f, 1.0 + s, f, -(s + b), 0.0, e);
   if (result.poor_quality && gamma_curve) {
     // The paper's curve reads the table at round(f).
@@ -272,17 +428,11 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
     cv::scaleAdd(curve_f, b, e, e);
-  } else if (result.poor_quality) {
-    // The default mode's curve reads the tables between levels: a dark frame's filtered values
-    // carry more than its few integer levels.
-    const int tiles = std::min({params.tone_tiles, f.cols, f.rows});
-    const std::vector<WeightedHistogram> histograms = edgeWeightedHistograms(f, tiles);
-    std::vector<GammaLut> luts;
-    luts.reserve(histograms.size());
-    for (const WeightedHistogram& h : histograms) {
-      luts.push_back(equalizingLut(h, params.alpha, params.tau));
-    }
-    cv::scaleAdd(applyTileCurves(f, luts, tiles), b, e, e);
+  } else if (equalize) {
+    cv::Mat& curve_f = scratch.curve_f;
+    curve_f.create(gray.size(), CV_32F);
+    forEachBand(starts, [&](int y0, int y1) { applyTileCurveRows(f, luts, tiles, curve_f, y0, y1); });
+    cv::scaleAdd(curve_f, b, e, e);
   }
   result.image = output;
   e.convertTo(result.image, CV_8U);  // round and saturate; keeps `output`'s buffer when it fits

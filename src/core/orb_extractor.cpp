@@ -96,7 +96,7 @@ public:
       : scores_(scores), starts_(starts), thresholds_(thresholds) {
     const int x0 = starts.front();
     width_ = starts.back() - x0;
-    const size_t row = static_cast<size_t>(width_) + 16;  // a zero column each side, 8-flag reads
+    const size_t row = static_cast<size_t>(width_) + 72;  // a zero column each side, 64-flag reads
     buffer.assign(7 * row, 0);
     for (int k = 0; k < 3; ++k) {
       b_[k] = buffer.data() + k * row + 1;
@@ -131,19 +131,23 @@ public:
         keep_[left] = here[left] > max8(max8(up[left], down[left]), here[left - 1]) ? 1 : 0;
         keep_[right] = here[right] > max8(max8(up[right], down[right]), here[right + 1]) ? 1 : 0;
       }
-      // Most of a row is suppressed: skip eight flags at a time.
+      // Few flags are set: gather them 64 at a time into a bit mask and visit its set bits.
       size_t cell = 0;
-      for (int i = 0; i < width_; i += 8) {
-        std::uint64_t word;
-        std::memcpy(&word, keep_ + i, sizeof word);
-        for (int j = i; word != 0 && j < std::min(i + 8, width_); ++j) {
-          if (keep_[j]) {
-            while (x0 + j >= starts_[cell + 1]) {
-              ++cell;
-            }
-            cell_corners[cell].emplace_back(static_cast<float>(x0 + j), static_cast<float>(y), 7.0f, -1.0f,
-                                            static_cast<float>(here[j]));
+      for (int i = 0; i < width_; i += 64) {
+        std::uint64_t mask = 0;
+        for (int w = 0; w < 8; ++w) {
+          std::uint64_t flags;  // eight 0/1 bytes (the buffer's tail is zero)
+          std::memcpy(&flags, keep_ + i + 8 * w, sizeof flags);
+          mask |= ((flags * 0x0102040810204080ULL) >> 56) << (8 * w);
+        }
+        while (mask != 0) {
+          const int j = i + __builtin_ctzll(mask);
+          mask &= mask - 1;
+          while (x0 + j >= starts_[cell + 1]) {
+            ++cell;
           }
+          cell_corners[cell].emplace_back(static_cast<float>(x0 + j), static_cast<float>(y), 7.0f, -1.0f,
+                                          static_cast<float>(here[j]));
         }
       }
       std::rotate(b_, b_ + 1, b_ + 3);
@@ -361,11 +365,33 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
   return selected;
 }
 
+namespace {
+
+// The moments' weights over the patch's square: u (for m10) and v (for m01) inside the disc, 0
+// outside, so that each row is one fixed-length loop the compiler vectorises.
+struct MomentWeights {
+  static constexpr int kSide = 2 * kOrientationRadius + 1;
+  static constexpr int kRow = kSide + 1;  // one zero weight more: whole vectors
+  std::array<std::array<std::int16_t, kRow>, kSide> u{}, v{};
+
+  MomentWeights() {
+    const std::array<int, kOrientationRadius + 1> u_max = patchHalfWidths();
+    for (int dv = -kOrientationRadius; dv <= kOrientationRadius; ++dv) {
+      for (int du = -u_max[std::abs(dv)]; du <= u_max[std::abs(dv)]; ++du) {
+        u[dv + kOrientationRadius][du + kOrientationRadius] = static_cast<std::int16_t>(du);
+        v[dv + kOrientationRadius][du + kOrientationRadius] = static_cast<std::int16_t>(dv);
+      }
+    }
+  }
+};
+
+}  // namespace
+
 void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoints) {
-  static const std::array<int, kOrientationRadius + 1> u_max = patchHalfWidths();
-  const cv::Rect inside(kOrientationRadius, kOrientationRadius, level.cols - 2 * kOrientationRadius,
-                        level.rows - 2 * kOrientationRadius);
-  const int step = static_cast<int>(level.step1());
+  static const MomentWeights weights;
+  constexpr int r = kOrientationRadius;
+  const cv::Rect inside(r, r, level.cols - 2 * r, level.rows - 2 * r);
+  const std::ptrdiff_t step = static_cast<std::ptrdiff_t>(level.step);
   for (cv::KeyPoint& kp : keypoints) {
     const cv::Point c(cvRound(kp.pt.x), cvRound(kp.pt.y));
     if (!inside.contains(c)) {
@@ -373,18 +399,18 @@ void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoin
       continue;
     }
     // Eq 4: moments m_pq = sum x^p y^q I(x, y) over the patch, centred on the keypoint.
-    const std::uint8_t* centre = level.ptr<std::uint8_t>(c.y) + c.x;
-    int m01 = 0;
-    int m10 = 0;
-    for (int v = -kOrientationRadius; v <= kOrientationRadius; ++v) {
-      const std::uint8_t* row = centre + v * step;
-      const int half = u_max[std::abs(v)];
-      int row_sum = 0;
-      for (int u = -half; u <= half; ++u) {
-        m10 += u * row[u];
-        row_sum += row[u];
+    const std::uint8_t* corner = level.ptr<std::uint8_t>(c.y - r) + (c.x - r);
+    std::int32_t m10 = 0;
+    std::int32_t m01 = 0;
+    for (int row = 0; row < MomentWeights::kSide; ++row) {
+      const std::uint8_t* pixels = corner + row * step;
+      const std::int16_t* wu = weights.u[row].data();
+      const std::int16_t* wv = weights.v[row].data();
+      for (int i = 0; i < MomentWeights::kRow; ++i) {
+        const std::int16_t pixel = pixels[i];
+        m10 += wu[i] * pixel;  // 16-bit products summed in 32 bits: a multiply-add per pair
+        m01 += wv[i] * pixel;
       }
-      m01 += v * row_sum;
     }
     kp.angle = cv::fastAtan2(static_cast<float>(m01), static_cast<float>(m10));  // eqs 5-6
   }
@@ -501,7 +527,7 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   out.inverted = false;
   if (params_.enhance_enabled) {
     ownOrRelease(out.image);
-    EnhanceResult enhanced = enhance(gray, params_.enhance, out.image);
+    EnhanceResult enhanced = enhance(gray, params_.enhance, out.image, params_.orb.threads);
     out.image = enhanced.image;
     out.lambda = enhanced.lambda;
     out.poor_quality = enhanced.poor_quality;

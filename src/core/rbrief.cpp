@@ -140,28 +140,61 @@ void smoothForDescription(const cv::Mat& level, cv::Mat& bordered, cv::Mat& smoo
                    cv::BORDER_REFLECT_101);
 }
 
+namespace {
+
+// Round to nearest, ties to even, as cvRound (the CPU's default rounding) does: adding and
+// removing 1.5 * 2^23 leaves a float of magnitude below 2^22 rounded to an integer.
+inline float roundToInteger(float x) {
+  constexpr float kMagic = 12582912.0f;
+  return (x + kMagic) - kMagic;  // not folded: the build neither reassociates nor contracts
+}
+
+// The tests' points as two float arrays: point 2 t is test t's first, point 2 t + 1 its second.
+struct TestPoints {
+  std::array<float, 512> x, y;
+};
+
+const TestPoints& testPoints(const std::array<BriefTest, 256>& tests) {
+  static const TestPoints points = [&tests] {
+    TestPoints p;
+    for (int t = 0; t < 256; ++t) {
+      p.x[2 * t] = static_cast<float>(tests[t].x1);
+      p.y[2 * t] = static_cast<float>(tests[t].y1);
+      p.x[2 * t + 1] = static_cast<float>(tests[t].x2);
+      p.y[2 * t + 1] = static_cast<float>(tests[t].y2);
+    }
+    return p;
+  }();
+  return points;
+}
+
+}  // namespace
+
 void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
               int first_row) {
   const std::array<BriefTest, 256>& tests = g_tests ? *g_tests : orbTests();
+  const TestPoints& points = testPoints(tests);
   const int step = static_cast<int>(smoothed.step);
+  alignas(64) int offset[512];
   for (size_t k = 0; k < keypoints.size(); ++k) {
     const cv::KeyPoint& kp = keypoints[k];
-    // The rotation as cv::ORB rounds it: single-precision angle, cosine and sine, products and sums.
+    // The rotation as cv::ORB rounds it: single-precision angle, cosine and sine, products and
+    // sums, each point rounded to the nearest pixel; the loop is vectorised.
     const float angle = kp.angle * static_cast<float>(CV_PI / 180.f);
     const float a = std::cos(angle);
     const float b = std::sin(angle);
+    for (int j = 0; j < 512; ++j) {
+      const float ix = roundToInteger(points.x[j] * a - points.y[j] * b);
+      const float iy = roundToInteger(points.x[j] * b + points.y[j] * a);
+      offset[j] = static_cast<int>(iy) * step + static_cast<int>(ix);
+    }
     const std::uint8_t* centre = smoothed.ptr<std::uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
-    auto at = [&](int x, int y) {
-      const float fx = static_cast<float>(x);
-      const float fy = static_cast<float>(y);
-      return centre[cvRound(fx * b + fy * a) * step + cvRound(fx * a - fy * b)];
-    };
     std::uint8_t* out = descriptors.ptr<std::uint8_t>(first_row + static_cast<int>(k));
     for (int byte = 0; byte < 32; ++byte) {
       int value = 0;
       for (int bit = 0; bit < 8; ++bit) {
-        const BriefTest& t = tests[8 * byte + bit];
-        value |= (at(t.x1, t.y1) < at(t.x2, t.y2)) << bit;
+        const int t = 8 * byte + bit;
+        value |= (centre[offset[2 * t]] < centre[offset[2 * t + 1]]) << bit;
       }
       out[byte] = static_cast<std::uint8_t>(value);
     }

@@ -138,6 +138,36 @@ TEST(Kernels, FastScoreIsTheLeastThresholdAtWhichCvFastRejects) {
   }
 }
 
+TEST(Enhance, IdenticalToTheReferenceInEveryModeAndSetting) {
+  std::vector<cv::Mat> images = eurocFrames(4);
+  images.push_back(test::syntheticScene());
+  std::vector<std::pair<std::string, EnhanceParams>> settings = {{"default", EnhanceParams()},
+                                                                 {"paper", Params::paper().enhance}};
+  EnhanceParams p = Params::paper().enhance;
+  p.gamma_mode = GammaMode::kAlways;
+  settings.emplace_back("paper, gamma always", p);
+  for (auto [name, change] : std::vector<std::pair<std::string, void (*)(EnhanceParams&)>>{
+           {"beta 0.5", [](EnhanceParams& e) { e.beta = 0.5; }},
+           {"sharpening 1", [](EnhanceParams& e) { e.sharpening = 1.0; }},
+           {"one tile", [](EnhanceParams& e) { e.tone_tiles = 1; }},
+           {"7 tiles", [](EnhanceParams& e) { e.tone_tiles = 7; }},
+           {"never", [](EnhanceParams& e) { e.gamma_mode = GammaMode::kNever; }}}) {
+    EnhanceParams e;
+    change(e);
+    settings.emplace_back(name, e);
+  }
+  cv::setNumThreads(3);
+  for (const auto& [name, params] : settings) {
+    for (size_t i = 0; i < images.size(); ++i) {
+      const cv::Mat expected = reference::enhance(images[i], params).image;
+      for (int threads : {1, 2, 3}) {
+        expectSameMat(enhance(images[i], params, cv::Mat(), threads).image, expected,
+                      name + ", image " + std::to_string(i) + ", " + std::to_string(threads) + " threads");
+      }
+    }
+  }
+}
+
 TEST(Corners, ScoreMapDetectorEqualsCvFastPerCell) {
   SimdScope scope;
   std::vector<cv::Mat> images = eurocFrames(10);
