@@ -8,6 +8,9 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/simd.h"
+#include "kernels/tone_curve.h"
+
 namespace enhanced_orb {
 
 cv::Mat toGray(const cv::Mat& image, PixelFormat format) {
@@ -197,16 +200,44 @@ void addEdgeWeights(const cv::Mat& f, int tiles, int y0, int y1, cv::Mat& gx, cv
     }
     x_end[t] = x;
   }
+  // The band's tile rows are summed side by side, pixel by pixel, so that their additions (each
+  // histogram's own, in the order of a single row-major pass) overlap instead of waiting on each
+  // other when neighbouring pixels fall into the same bin.
+  int row_start[17];
+  int tile_rows = 0;
   for (int y = y0; y < y1; ++y) {
-    const float* fr = f.ptr<float>(y);
-    const float* wr = weight.ptr<float>(y);
-    WeightedHistogram* row_tiles = &histograms[static_cast<size_t>(tileRow(y, tiles, f.rows)) * tiles];
+    if (y == y0 || tileRow(y, tiles, f.rows) != tileRow(y - 1, tiles, f.rows)) {
+      row_start[tile_rows++] = y;
+    }
+  }
+  row_start[tile_rows] = y1;
+  int height = 0;
+  for (int k = 0; k < tile_rows; ++k) {
+    height = std::max(height, row_start[k + 1] - row_start[k]);
+  }
+  auto bin = [](float value) {
+    // round(f): f >= 0 (a blur of an 8-bit image), rounded half up in double as std::lround does.
+    return std::min(255, std::max(0, static_cast<int>(static_cast<double>(value) + 0.5)));
+  };
+  for (int r = 0; r < height; ++r) {
+    const float* fr[16];
+    const float* wr[16];
+    WeightedHistogram* h[16];  // the tile row's histograms
+    int active = 0;
+    for (int k = 0; k < tile_rows; ++k) {
+      const int y = row_start[k] + r;
+      if (y < row_start[k + 1]) {
+        fr[active] = f.ptr<float>(y);
+        wr[active] = weight.ptr<float>(y);
+        h[active] = &histograms[static_cast<size_t>(tileRow(y, tiles, f.rows)) * tiles];
+        ++active;
+      }
+    }
     for (int t = 0, x = 0; t < tiles; ++t) {
-      double* h = row_tiles[t].data();
       for (; x < x_end[t]; ++x) {
-        // round(f): f >= 0 (a blur of an 8-bit image), rounded half up in double as std::lround does.
-        const int bin = std::min(255, std::max(0, static_cast<int>(static_cast<double>(fr[x]) + 0.5)));
-        h[bin] += wr[x];
+        for (int k = 0; k < active; ++k) {
+          h[k][t][bin(fr[k][x])] += wr[k][x];
+        }
       }
     }
   }
@@ -226,7 +257,6 @@ namespace {
 
 // Rows [y0, y1) of applyTileCurves into `out` (already of f's size, CV_32F or CV_8U).
 void applyTileCurveRows(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int y0, int y1) {
-  const int type = out.depth();
   // Tile centres at (k + 1/2) of a tile; pixels beyond the outer centres use the nearest curves.
   auto neighbours = [tiles](int pos, int length, int& k0, int& k1, float& w1) {
     const float g = (pos + 0.5f) * tiles / length - 0.5f;
@@ -234,81 +264,61 @@ void applyTileCurveRows(const cv::Mat& f, const std::vector<GammaLut>& luts, int
     k1 = std::min(k0 + 1, tiles - 1);
     w1 = std::clamp(g - static_cast<float>(k0), 0.0f, 1.0f);
   };
-  // The four curves of a pixel, read at the same level, side by side in one vector: for each pair
-  // of neighbouring tile rows (y0, y1) and columns (x0, x1), a table of 256 levels holding the
-  // value and the slope of curves (y0, x0), (y0, x1), (y1, x0), (y1, x1). Each lane's arithmetic
-  // is that of one curve read alone.
-  typedef float Float4 __attribute__((vector_size(16)));
-  struct Level {
-    Float4 value, slope;
-  };
-  auto pairIndex = [tiles](int k0, int k1) { return k0 + (k1 > k0 ? tiles : 0); };  // 2 tiles - 1 pairs
-  const int pairs = 2 * tiles;
-  // Buffers kept per thread; the loops below use plain pointers into them (a thread_local reached
-  // from a shared library costs a call per access).
-  thread_local std::vector<Level> table_buffer;
-  thread_local std::vector<char> built_buffer;
-  table_buffer.resize(static_cast<size_t>(pairs) * pairs * 256);
-  built_buffer.assign(static_cast<size_t>(pairs) * pairs, 0);
-  Level* const tables = table_buffer.data();
-  char* const built = built_buffer.data();
-  auto table = [&](int y0, int y1, int x0, int x1) -> const Level* {
-    const size_t t = static_cast<size_t>(pairIndex(y0, y1)) * pairs + pairIndex(x0, x1);
-    Level* levels = &tables[t * 256];
-    if (!built[t]) {
-      const GammaLut* curve[4] = {&luts[y0 * tiles + x0], &luts[y0 * tiles + x1], &luts[y1 * tiles + x0],
-                                  &luts[y1 * tiles + x1]};
-      for (int i = 0; i < 256; ++i) {
-        for (int k = 0; k < 4; ++k) {
-          levels[i].value[k] = (*curve[k])[i];
-          levels[i].slope[k] = i < 255 ? (*curve[k])[i + 1] - (*curve[k])[i] : 0.0f;
-        }
-      }
-      built[t] = 1;
+  // Each curve as value and slope per level, read at f by linear interpolation. Buffers are kept
+  // per thread and reached through plain pointers (a thread_local of a shared library costs a call
+  // per access).
+  thread_local std::vector<float> curve_buffer;
+  thread_local std::vector<int> column_buffer;
+  thread_local std::vector<float> weight_buffer;
+  curve_buffer.resize(luts.size() * 512);
+  column_buffer.resize(2 * static_cast<size_t>(f.cols));
+  weight_buffer.resize(2 * static_cast<size_t>(f.cols));
+  float* const curves = curve_buffer.data();  // tile t: values at 512 t, slopes at 512 t + 256
+  for (size_t t = 0; t < luts.size(); ++t) {
+    for (int i = 0; i < 256; ++i) {
+      curves[512 * t + i] = luts[t][i];
+      curves[512 * t + 256 + i] = i < 255 ? luts[t][i + 1] - luts[t][i] : 0.0f;
     }
-    return levels;
-  };
-  thread_local std::vector<int> x0_buffer, x1_buffer;
-  thread_local std::vector<Float4> wx_buffer;
-  x0_buffer.resize(f.cols);
-  x1_buffer.resize(f.cols);
-  wx_buffer.resize(f.cols);
-  int* const x0 = x0_buffer.data();
-  int* const x1 = x1_buffer.data();
-  Float4* const wx = wx_buffer.data();  // (1 - w, w, 1 - w, w) of each column
-  for (int x = 0; x < f.cols; ++x) {
-    float w = 0.0f;
-    neighbours(x, f.cols, x0[x], x1[x], w);
-    wx[x] = Float4{1.0f - w, w, 1.0f - w, w};
   }
+  int* const x0 = column_buffer.data();
+  int* const x1 = x0 + f.cols;
+  float* const w_left = weight_buffer.data();
+  float* const w_right = w_left + f.cols;
+  for (int x = 0; x < f.cols; ++x) {
+    neighbours(x, f.cols, x0[x], x1[x], w_right[x]);
+    w_left[x] = 1.0f - w_right[x];
+  }
+  // Runs of columns between two tile centres share their four curves.
+  int run_start[34];
+  int runs = 0;
+  for (int x = 0; x < f.cols; ++x) {
+    if (x == 0 || x0[x] != x0[x - 1] || x1[x] != x1[x - 1]) {
+      run_start[runs++] = x;
+    }
+  }
+  run_start[runs] = f.cols;
+  const SimdLevel simd = activeSimdLevel();
+  const bool to_float = out.depth() == CV_32F;
   for (int y = y0; y < y1; ++y) {
     int ty0 = 0, ty1 = 0;
     float wy = 0.0f;
     neighbours(y, f.rows, ty0, ty1, wy);
     const float* fr = f.ptr<float>(y);
-    float* o = type == CV_32F ? out.ptr<float>(y) : nullptr;
-    std::uint8_t* o8 = type == CV_8U ? out.ptr<std::uint8_t>(y) : nullptr;
-    for (int x = 0; x < f.cols;) {
-      // A run of columns between two tile centres shares its four curves.
-      const Level* levels = table(ty0, ty1, x0[x], x1[x]);
-      const int run_x0 = x0[x];
-      const int run_x1 = x1[x];
-      for (; x < f.cols && x0[x] == run_x0 && x1[x] == run_x1; ++x) {
-        // Each curve read at f by linear interpolation between levels, then blended bilinearly.
-        const float c = std::clamp(fr[x], 0.0f, 255.0f);
-        const int i = std::min(254, static_cast<int>(c));
-        const float frac = c - static_cast<float>(i);
-        const Float4 read = levels[i].value + frac * levels[i].slope;
-        const Float4 weighted = wx[x] * read;
-        const float top = weighted[0] + weighted[1];
-        const float bottom = weighted[2] + weighted[3];
-        const float value = (1.0f - wy) * top + wy * bottom;
-        if (o) {
-          o[x] = value;
-        } else {
-          o8[x] = cv::saturate_cast<std::uint8_t>(value);  // as convertTo rounds
-        }
+    for (int r = 0; r < runs; ++r) {
+      const int x = run_start[r];
+      const int end = run_start[r + 1];
+      const int tile[4] = {ty0 * tiles + x0[x], ty0 * tiles + x1[x], ty1 * tiles + x0[x], ty1 * tiles + x1[x]};
+      kernels::ToneCurveRun run{};
+      for (int k = 0; k < 4; ++k) {
+        run.value[k] = curves + 512 * tile[k];
+        run.slope[k] = curves + 512 * tile[k] + 256;
       }
+      run.w_left = w_left + x;
+      run.w_right = w_right + x;
+      run.wy_top = 1.0f - wy;
+      run.wy_bottom = wy;
+      kernels::toneCurveRun(simd, fr + x, end - x, run, to_float ? nullptr : out.ptr<std::uint8_t>(y) + x,
+                            to_float ? out.ptr<float>(y) + x : nullptr);
     }
   }
 }
