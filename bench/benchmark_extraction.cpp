@@ -1,15 +1,21 @@
-// Google Benchmark of every stage and of whole frames: baseline ORB, enhanced ORB and cv::ORB at
-// equal budgets, single-threaded, on the EuRoC frames (ENHANCED_ORB_EUROC_DIR or --frames DIR).
+// Google Benchmark of every stage and of whole frames, side by side in one run: this project's
+// default mode, paper preset and baseline at budgets 500, 1000, 2000 and every corner, on 1 and 2
+// threads and at each instruction set, against cv::ORB at the same budgets on one thread, on the
+// EuRoC frames (ENHANCED_ORB_EUROC_DIR or --frames DIR). Each frame benchmark also counts the heap
+// allocations per frame (operator new and cv::Mat buffers) once its workspaces are warm.
 //
 //   devel/lib/enhanced_orb/benchmark_extraction [--frames DIR] [google benchmark options]
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -19,11 +25,68 @@
 #include "enhanced_orb/evaluation/dataset.h"
 #include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/orb_extractor.h"
+#include "enhanced_orb/rbrief.h"
+#include "enhanced_orb/simd.h"
+
+// Every allocation through operator new in the process (the libraries' included) is counted.
+// (GCC takes the free() of a replaced operator delete for a mismatch.)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) {
+    return p;
+  }
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  return operator new(size);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
 
 namespace eo = enhanced_orb;
 namespace fs = std::filesystem;
 
 namespace {
+
+// cv::Mat buffers come from cv::fastMalloc, not operator new: counted by wrapping OpenCV's allocator.
+class CountingMatAllocator : public cv::MatAllocator {
+public:
+  cv::UMatData* allocate(int dims, const int* sizes, int type, void* data, size_t* step, cv::AccessFlag flags,
+                         cv::UMatUsageFlags usage) const override {
+    if (!data) {
+      g_allocations.fetch_add(1, std::memory_order_relaxed);
+    }
+    return base_->allocate(dims, sizes, type, data, step, flags, usage);
+  }
+  bool allocate(cv::UMatData* data, cv::AccessFlag flags, cv::UMatUsageFlags usage) const override {
+    return base_->allocate(data, flags, usage);
+  }
+  void deallocate(cv::UMatData* data) const override { base_->deallocate(data); }
+
+private:
+  cv::MatAllocator* base_ = cv::Mat::getStdAllocator();
+};
+
+// OpenCV's pool for one benchmark, back to one thread afterwards.
+struct ThreadScope {
+  explicit ThreadScope(int threads) { cv::setNumThreads(threads); }
+  ~ThreadScope() { cv::setNumThreads(1); }
+};
 
 std::vector<cv::Mat>& frames() {
   static std::vector<cv::Mat> images;
@@ -39,25 +102,6 @@ struct FrameCycle {
   size_t i = 0;
   const cv::Mat& next() { return frame(i++); }
 };
-
-// The paper preset (the paper's tables measure it) and the default mode, at a budget.
-eo::Params improved(int max_features) {
-  eo::Params p = eo::Params::paper();
-  p.orb.max_features = max_features;
-  return p;
-}
-
-eo::Params defaultMode(int max_features) {
-  eo::Params p;
-  p.orb.max_features = max_features;
-  return p;
-}
-
-eo::Params baseline(int max_features) {
-  eo::Params p = eo::Params::baseline();
-  p.orb.max_features = max_features;
-  return p;
-}
 
 // Intermediate results of one frame, so that each stage can be timed on its own input.
 struct Stages {
@@ -99,19 +143,24 @@ void BM_GrayFromBGR(benchmark::State& state) {
   }
 }
 
+// Stages, one thread unless said. range(0) of BM_Enhance: 0, 1 the paper preset's enhancement
+// (gamma by the paper's test, or always), 2 the default mode's; range(1): threads.
 void BM_Enhance(benchmark::State& state) {
-  // 0, 1: the paper preset's enhancement, gamma by the paper's test or always; 2: the default mode's.
   eo::EnhanceParams p = state.range(0) == 2 ? eo::EnhanceParams() : eo::Params::paper().enhance;
   if (state.range(0) == 1) {
     p.gamma_mode = eo::GammaMode::kAlways;
   }
+  const int threads = static_cast<int>(state.range(1));
+  ThreadScope scope(threads);
   FrameCycle cycle;
+  cv::Mat out;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(eo::enhance(cycle.next(), p).image.data);
+    out = eo::enhance(cycle.next(), p, out, threads).image;
+    benchmark::DoNotOptimize(out.data);
   }
   static const char* labels[] = {"paper, gamma auto (EuRoC: not poor)", "paper, gamma always",
                                  "default mode (tiled equalisation)"};
-  state.SetLabel(labels[state.range(0)]);
+  state.SetLabel(std::string(labels[state.range(0)]) + ", " + std::to_string(threads) + " thread(s)");
 }
 
 void BM_Pyramid(benchmark::State& state) {
@@ -119,39 +168,57 @@ void BM_Pyramid(benchmark::State& state) {
   for (auto _ : state) {
     benchmark::DoNotOptimize(eo::buildPyramid(stages()[i++ % stages().size()].enhanced, 8, 1.2).size());
   }
+  state.SetLabel("8 levels, cv::resize INTER_LINEAR_EXACT");
 }
 
 void BM_Thresholds(benchmark::State& state) {
   size_t i = 0;
+  eo::ThresholdWorkspace ws;
+  cv::Mat thresholds;
   for (auto _ : state) {
     for (const cv::Mat& level : stages()[i++ % stages().size()].pyramid) {
-      benchmark::DoNotOptimize(eo::cellThresholds(level, eo::ThresholdParams()).data);
+      eo::cellThresholds(level, eo::ThresholdParams(), ws, thresholds);
+      benchmark::DoNotOptimize(thresholds.data);
     }
   }
-  state.SetLabel("all 8 levels");
+  state.SetLabel("all 8 levels: histograms and 200 Otsu thresholds");
 }
 
+// range(0): 0 a fixed threshold of 20, 1 the adaptive thresholds; range(1): instruction set.
 void BM_Fast(benchmark::State& state) {
   const bool adaptive = state.range(0) != 0;
+  const eo::SimdLevel saved = eo::activeSimdLevel();
+  const eo::SimdLevel simd = eo::setSimdLevel(static_cast<eo::SimdLevel>(state.range(1)));
+  if (simd != static_cast<eo::SimdLevel>(state.range(1))) {
+    eo::setSimdLevel(saved);
+    state.SkipWithError("instruction set not supported here");
+    return;
+  }
   size_t i = 0;
   size_t corners = 0;
+  eo::CornerWorkspace ws;
+  std::vector<cv::KeyPoint> found;
   for (auto _ : state) {
     const Stages& s = stages()[i++ % stages().size()];
     for (size_t level = 0; level < s.pyramid.size(); ++level) {
       const cv::Mat fixed(s.thresholds[level].size(), CV_32S, cv::Scalar(20));
-      corners += eo::detectCorners(s.pyramid[level], adaptive ? s.thresholds[level] : fixed).size();
+      eo::detectCorners(s.pyramid[level], adaptive ? s.thresholds[level] : fixed, ws, found);
+      corners += found.size();
     }
   }
+  eo::setSimdLevel(saved);
   state.counters["corners"] = benchmark::Counter(static_cast<double>(corners), benchmark::Counter::kAvgIterations);
-  state.SetLabel(adaptive ? "adaptive thresholds, enhanced image" : "fixed 20, enhanced image");
+  state.SetLabel(std::string(adaptive ? "adaptive thresholds" : "fixed 20") + ", enhanced image, " +
+                 eo::toString(simd));
 }
 
 void BM_Orientation(benchmark::State& state) {
   size_t i = 0;
+  std::vector<cv::KeyPoint> kps;
   for (auto _ : state) {
     const Stages& s = stages()[i++ % stages().size()];
     for (size_t level = 0; level < s.pyramid.size(); ++level) {
-      std::vector<cv::KeyPoint> kps = s.corners[level];
+      kps = s.corners[level];
       eo::computeOrientation(s.pyramid[level], kps);
       benchmark::DoNotOptimize(kps.data());
     }
@@ -159,60 +226,118 @@ void BM_Orientation(benchmark::State& state) {
   state.SetLabel("every adaptive corner");
 }
 
+// range(0): 0 this project's smoothing and rBRIEF, 1 cv::ORB::compute level by level.
 void BM_Descriptors(benchmark::State& state) {
+  const bool opencv = state.range(0) == 1;
   const cv::Ptr<cv::ORB> orb = cv::ORB::create(500, 1.2f, 1, eo::kEdgeThreshold, 0, 2, cv::ORB::HARRIS_SCORE, 31);
   size_t i = 0;
+  cv::Mat bordered, smoothed, d;
+  std::vector<cv::KeyPoint> kps;
   for (auto _ : state) {
     const Stages& s = stages()[i++ % stages().size()];
     for (size_t level = 0; level < s.pyramid.size(); ++level) {
-      std::vector<cv::KeyPoint> kps = s.corners[level];
-      cv::Mat d;
-      orb->compute(s.pyramid[level], kps, d);
+      kps = s.corners[level];
+      if (opencv) {
+        orb->compute(s.pyramid[level], kps, d);
+      } else {
+        eo::smoothForDescription(s.pyramid[level], bordered, smoothed);
+        d.create(static_cast<int>(kps.size()), eo::kDescriptorBytes, CV_8U);
+        eo::describe(smoothed, kps, d, 0);
+      }
       benchmark::DoNotOptimize(d.data);
     }
   }
-  state.SetLabel("every adaptive corner (cv::ORB per level)");
+  state.SetLabel(opencv ? "every adaptive corner, cv::ORB::compute per level"
+                        : "every adaptive corner, smoothing + own rBRIEF");
 }
 
-// Whole frames. range(0): 0 baseline, 1 paper preset, 2 cv::ORB, 3 default mode; range(1): budget
-// (0 = unlimited).
+enum Method { kBaseline = 0, kPaper = 1, kOpenCv = 2, kDefault = 3 };
+
+// Whole frames. range(0): method; range(1): budget (0 = every corner); range(2): threads;
+// range(3): instruction set (this project only).
 void BM_Frame(benchmark::State& state) {
   const int method = static_cast<int>(state.range(0));
   const int budget = static_cast<int>(state.range(1));
+  const int threads = static_cast<int>(state.range(2));
+  const eo::SimdLevel saved = eo::activeSimdLevel();
+  const eo::SimdLevel simd = eo::setSimdLevel(static_cast<eo::SimdLevel>(state.range(3)));
+  if (method != kOpenCv && simd != static_cast<eo::SimdLevel>(state.range(3))) {
+    eo::setSimdLevel(saved);
+    state.SkipWithError("instruction set not supported here");
+    return;
+  }
+  ThreadScope scope(threads);
   FrameCycle cycle;
   size_t keypoints = 0;
-  if (method == 2) {
-    // cv::ORB keeps at most nfeatures; "unlimited" asks for more than any frame has.
+  long allocations = 0;
+  if (method == kOpenCv) {
+    // cv::ORB keeps at most nfeatures; "every corner" asks for more than any frame has.
     const cv::Ptr<cv::ORB> orb = cv::ORB::create(budget > 0 ? budget : 1000000, 1.2f, 8);
+    std::vector<cv::KeyPoint> kps;
+    cv::Mat d;
+    for (int warm = 0; warm < 3; ++warm) {
+      orb->detectAndCompute(cycle.next(), cv::noArray(), kps, d);
+    }
+    const long before = g_allocations.load();
     for (auto _ : state) {
-      std::vector<cv::KeyPoint> kps;
-      cv::Mat d;
       orb->detectAndCompute(cycle.next(), cv::noArray(), kps, d);
       keypoints += kps.size();
     }
+    allocations = g_allocations.load() - before;
   } else {
-    const eo::OrbExtractor extractor(method == 1   ? improved(budget)
-                                     : method == 3 ? defaultMode(budget)
-                                                   : baseline(budget));
+    eo::Params p = method == kPaper ? eo::Params::paper() : method == kDefault ? eo::Params() : eo::Params::baseline();
+    p.orb.max_features = budget;
+    p.orb.threads = threads;
+    const eo::OrbExtractor extractor(p);
+    eo::Extraction out;
+    for (int warm = 0; warm < 3; ++warm) {
+      extractor.extract(cycle.next(), out);
+    }
+    const long before = g_allocations.load();
     for (auto _ : state) {
-      keypoints += extractor.extract(cycle.next()).keypoints.size();
+      extractor.extract(cycle.next(), out);
+      keypoints += out.keypoints.size();
+    }
+    allocations = g_allocations.load() - before;
+  }
+  eo::setSimdLevel(saved);
+  const double iterations = static_cast<double>(state.iterations());
+  state.counters["keypoints"] = static_cast<double>(keypoints) / iterations;
+  state.counters["allocs_per_frame"] = static_cast<double>(allocations) / iterations;
+  static const char* names[] = {"baseline ORB", "paper preset", "cv::ORB", "default mode"};
+  state.SetLabel(std::string(names[method]) + ", " + (budget ? std::to_string(budget) + " features" : "every corner") +
+                 ", " + std::to_string(threads) + " thread(s)" +
+                 (method == kOpenCv ? std::string() : std::string(", ") + eo::toString(simd)));
+}
+
+void frameArguments(benchmark::internal::Benchmark* b) {
+  const int best = static_cast<int>(eo::supportedSimdLevels().back());
+  for (int budget : {500, 1000, 2000, 0}) {
+    b->Args({kOpenCv, budget, 1, best});
+    for (int method : {kDefault, kBaseline, kPaper}) {
+      for (int threads : {1, 2}) {
+        b->Args({method, budget, threads, best});
+      }
     }
   }
-  state.counters["keypoints"] = benchmark::Counter(static_cast<double>(keypoints), benchmark::Counter::kAvgIterations);
-  static const char* names[] = {"baseline ORB", "paper preset", "cv::ORB", "default mode"};
-  state.SetLabel(std::string(names[method]) + (budget ? ", 1000 features" : ", unlimited"));
+  // Each instruction set below the best (the scalar kernels are references, not a path), at 1000.
+  for (int simd = static_cast<int>(eo::SimdLevel::kVector128); simd < best; ++simd) {
+    for (int method : {kDefault, kBaseline}) {
+      b->Args({method, 1000, 1, simd});
+    }
+  }
 }
 
 BENCHMARK(BM_GrayFromBGR)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Enhance)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Enhance)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Thresholds)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Fast)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Fast)->ArgsProduct({{0, 1}, {1, 2, 3}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Orientation)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Descriptors)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Descriptors)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Frame)
-    ->ArgsProduct({{0, 1, 2, 3}, {0, 1000}})
-    ->ArgNames({"method", "budget"})
+    ->Apply(frameArguments)
+    ->ArgNames({"method", "budget", "threads", "simd"})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
@@ -244,8 +369,11 @@ int main(int argc, char** argv) {
     std::cerr << "benchmark_extraction: no readable image in " << dir << "\n";
     return 1;
   }
-  cv::setNumThreads(1);  // single-threaded, every method alike
+  static CountingMatAllocator counting;
+  cv::Mat::setDefaultAllocator(&counting);
+  cv::setNumThreads(1);  // single-threaded unless a benchmark says otherwise, every method alike
   stages();              // prepared before timing starts
+  benchmark::AddCustomContext("simd", eo::toString(eo::activeSimdLevel()));
   benchmark::AddCustomContext("frames", std::to_string(frames().size()) + " x " + std::to_string(frames()[0].cols) +
                                             "x" + std::to_string(frames()[0].rows) + " from " + dir);
   int n = static_cast<int>(args.size());

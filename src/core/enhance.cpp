@@ -166,9 +166,9 @@ int tileRow(int y, int tiles, int rows) {
 
 // Band edges for `bands` bands that each hold whole tile rows (so that each tile's histogram is
 // summed by one thread, pixel by pixel in the order of a single pass).
-std::vector<int> bandStarts(int rows, int tiles, int bands) {
+void bandStarts(int rows, int tiles, int bands, std::vector<int>& starts) {
   bands = std::max(1, std::min({bands, tiles, rows}));
-  std::vector<int> starts{0};
+  starts.assign(1, 0);
   for (int k = 1; k < bands; ++k) {
     const int first_tile = k * tiles / bands;
     int y = starts.back();
@@ -178,7 +178,6 @@ std::vector<int> bandStarts(int rows, int tiles, int bands) {
     starts.push_back(y);
   }
   starts.push_back(rows);
-  return starts;
 }
 
 // Rows [y0, y1) of edgeWeightedHistograms: the weights sqrt(|grad f|) of those rows into `weight`
@@ -367,7 +366,12 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
 
   // Float buffers are reused from call to call on each thread: fresh ones of this size would be
   // fresh pages from the kernel, whose faults cost more than the arithmetic.
-  thread_local struct { cv::Mat input_f, f, e, f_rounded, curve_f, gx, gy, weight; } scratch;
+  thread_local struct {
+    cv::Mat input_f, f, e, f_rounded, curve_f, gx, gy, weight;
+    std::vector<int> starts;
+    std::vector<WeightedHistogram> histograms;
+    std::vector<GammaLut> luts;
+  } scratch;
   // (The lambdas below run on other threads: they must reach these buffers through references,
   // not by the thread_local's name.)
   cv::Mat& input_f = scratch.input_f;
@@ -383,7 +387,8 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   // reads the rows around its band, as a whole-image pass does, so the result is the same.
   const bool equalize = result.poor_quality && params.tone_curve == ToneCurve::kEqualize;
   const int tiles = std::min({params.tone_tiles, gray.cols, gray.rows});
-  const std::vector<int> starts = bandStarts(gray.rows, equalize ? tiles : gray.rows, threads);
+  std::vector<int>& starts = scratch.starts;
+  bandStarts(gray.rows, equalize ? tiles : gray.rows, threads, starts);
   auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
 
   // Eqs 8-9: f = I * h, kept in floating point.
@@ -402,14 +407,16 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   // (1 + sharpening) I - (sharpening + beta) f + beta LUT(f) in vectorised passes.
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
-  std::vector<GammaLut> luts;
+  std::vector<GammaLut>& luts = scratch.luts;
+  luts.clear();
   if (equalize) {
     // The default mode's curves, one per tile, read between levels: a dark frame's filtered
     // values carry more than its few integer levels.
     for (cv::Mat* m : {&gx, &gy, &weight}) {
       m->create(gray.size(), CV_32F);
     }
-    std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
+    std::vector<WeightedHistogram>& histograms = scratch.histograms;
+    histograms.assign(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
     forEachBand(starts, [&](int y0, int y1) { addEdgeWeights(f, tiles, y0, y1, gx, gy, weight, histograms); });
     for (const WeightedHistogram& h : histograms) {
       luts.push_back(equalizingLut(h, params.alpha, params.tau));

@@ -53,8 +53,8 @@ float levelScale(double scale_factor, int level) {
 }
 
 // Level sizes as buildPyramid() makes them; fewer than n_levels when a level would be empty.
-std::vector<cv::Size> pyramidSizes(cv::Size size, int n_levels, double scale_factor) {
-  std::vector<cv::Size> sizes{size};
+void pyramidSizes(cv::Size size, int n_levels, double scale_factor, std::vector<cv::Size>& sizes) {
+  sizes.assign(1, size);
   for (int level = 1; level < n_levels; ++level) {
     const float inv_scale = 1.0f / levelScale(scale_factor, level);
     const cv::Size next(cvRound(size.width * inv_scale), cvRound(size.height * inv_scale));
@@ -63,7 +63,6 @@ std::vector<cv::Size> pyramidSizes(cv::Size size, int n_levels, double scale_fac
     }
     sizes.push_back(next);
   }
-  return sizes;
 }
 
 // Stronger response first; position breaks ties, so that every selection is deterministic.
@@ -90,12 +89,12 @@ inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
 // own cell threshold; a neighbour across a cell edge counts 0.
 class BandSuppression {
 public:
-  // `starts`: the first column of each cell of the band and, last, the end of the interior.
-  BandSuppression(const cv::Mat& scores, const std::vector<int>& starts, const int* thresholds,
+  // starts[0..cells]: the first column of each cell of the band and, last, the end of the interior.
+  BandSuppression(const cv::Mat& scores, const int* starts, int cells, const int* thresholds,
                   std::vector<std::uint8_t>& buffer)
-      : scores_(scores), starts_(starts), thresholds_(thresholds) {
-    const int x0 = starts.front();
-    width_ = starts.back() - x0;
+      : scores_(scores), starts_(starts), cells_(cells), thresholds_(thresholds) {
+    const int x0 = starts[0];
+    width_ = starts[cells] - x0;
     const size_t row = static_cast<size_t>(width_) + 72;  // a zero column each side, 64-flag reads
     buffer.assign(7 * row, 0);
     for (int k = 0; k < 3; ++k) {
@@ -107,7 +106,7 @@ public:
 
   // Appends the corners of rows [y0, y1) of the band to each cell's list.
   void run(int y0, int y1, std::vector<std::vector<cv::KeyPoint>>& cell_corners) {
-    const int x0 = starts_.front();
+    const int x0 = starts_[0];
     clearRow(0);
     fillRow(y0, 1);
     for (int y = y0; y < y1; ++y) {
@@ -125,14 +124,14 @@ public:
         keep[i] = here[i] > max8(max8(up[i], down[i]), max8(here[i - 1], here[i + 1])) ? 1 : 0;
       }
       // Across a cell edge the horizontal neighbours count 0: redo the edge columns.
-      for (size_t c = 1; c + 1 < starts_.size(); ++c) {
+      for (int c = 1; c < cells_; ++c) {
         const int right = starts_[c] - x0;  // first column of cell c
         const int left = right - 1;         // last column of cell c - 1
         keep_[left] = here[left] > max8(max8(up[left], down[left]), here[left - 1]) ? 1 : 0;
         keep_[right] = here[right] > max8(max8(up[right], down[right]), here[right + 1]) ? 1 : 0;
       }
       // Few flags are set: gather them 64 at a time into a bit mask and visit its set bits.
-      size_t cell = 0;
+      int cell = 0;
       for (int i = 0; i < width_; i += 64) {
         std::uint64_t mask = 0;
         for (int w = 0; w < 8; ++w) {
@@ -163,10 +162,10 @@ private:
 
   // Slot `slot` gets row y's b and the maximum of each b's three horizontal neighbours in its cell.
   void fillRow(int y, int slot) {
-    const int x0 = starts_.front();
+    const int x0 = starts_[0];
     const std::uint8_t* __restrict m = scores_.ptr<std::uint8_t>(y) + x0;
     std::uint8_t* __restrict b = b_[slot];
-    for (size_t c = 0; c + 1 < starts_.size(); ++c) {
+    for (int c = 0; c < cells_; ++c) {
       const std::uint8_t t = static_cast<std::uint8_t>(thresholds_[c]);
       const int begin = starts_[c] - x0;
       const int end = starts_[c + 1] - x0;
@@ -179,7 +178,7 @@ private:
     for (int i = 0; i < width; ++i) {
       around[i] = max8(max8(b[i - 1], b[i]), b[i + 1]);
     }
-    for (size_t c = 1; c + 1 < starts_.size(); ++c) {
+    for (int c = 1; c < cells_; ++c) {
       const int right = starts_[c] - x0;
       around[right - 1] = max8(b[right - 2], b[right - 1]);
       around[right] = max8(b[right], b[right + 1]);
@@ -187,7 +186,8 @@ private:
   }
 
   const cv::Mat& scores_;
-  const std::vector<int>& starts_;
+  const int* starts_;
+  int cells_;
   const int* thresholds_;
   int width_ = 0;
   std::uint8_t* b_[3];
@@ -199,7 +199,8 @@ private:
 
 std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double scale_factor) {
   std::vector<cv::Mat> pyramid{image};
-  const std::vector<cv::Size> sizes = pyramidSizes(image.size(), n_levels, scale_factor);
+  std::vector<cv::Size> sizes;
+  pyramidSizes(image.size(), n_levels, scale_factor, sizes);
   for (size_t level = 1; level < sizes.size(); ++level) {
     cv::Mat next;
     cv::resize(pyramid.back(), next, sizes[level], 0, 0, cv::INTER_LINEAR_EXACT);
@@ -258,11 +259,10 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
       continue;
     }
     starts_data[cells] = rows.br().x;
-    const std::vector<int> starts(starts_data, starts_data + cells + 1);
     for (auto& list : ws.cell_lists) {
       list.clear();
     }
-    BandSuppression(ws.scores, starts, band_thresholds, ws.rows).run(rows.y, rows.br().y, ws.cell_lists);
+    BandSuppression(ws.scores, starts_data, cells, band_thresholds, ws.rows).run(rows.y, rows.br().y, ws.cell_lists);
     for (int c = 0; c < cells; ++c) {
       corners.insert(corners.end(), ws.cell_lists[c].begin(), ws.cell_lists[c].end());
     }
@@ -276,8 +276,10 @@ std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thr
   return corners;
 }
 
-std::vector<int> levelBudgets(int total, int n_levels, double scale_factor) {
-  std::vector<int> budgets(n_levels, 0);
+namespace {
+
+void levelBudgets(int total, int n_levels, double scale_factor, std::vector<int>& budgets) {
+  budgets.assign(n_levels, 0);
   const double factor = 1.0 / scale_factor;
   double per_level = total * (1.0 - factor) / (1.0 - std::pow(factor, n_levels));
   int assigned = 0;
@@ -287,8 +289,38 @@ std::vector<int> levelBudgets(int total, int n_levels, double scale_factor) {
     per_level *= factor;
   }
   budgets[n_levels - 1] = total - assigned;
+}
+
+}  // namespace
+
+std::vector<int> levelBudgets(int total, int n_levels, double scale_factor) {
+  std::vector<int> budgets;
+  levelBudgets(total, n_levels, scale_factor, budgets);
   return budgets;
 }
+
+namespace {
+
+// The keys of keypoints whose responses are integers in [0, 65535] at integer positions in
+// [0, 65535] (the extractor's corners): (65535 - response) << 32 | y << 16 | x, so that ascending
+// keys are `stronger` order. False, with `keys` unspecified, for any other keypoint.
+bool packedStrengthKeys(const std::vector<cv::KeyPoint>& keypoints, std::vector<std::uint64_t>& keys) {
+  keys.resize(keypoints.size());
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const cv::KeyPoint& kp = keypoints[i];
+    const float r = kp.response;
+    if (!(r >= 0.0f && r <= 65535.0f && kp.pt.x >= 0.0f && kp.pt.x <= 65535.0f && kp.pt.y >= 0.0f &&
+          kp.pt.y <= 65535.0f) ||
+        r != std::floor(r) || kp.pt.x != std::floor(kp.pt.x) || kp.pt.y != std::floor(kp.pt.y)) {
+      return false;
+    }
+    keys[i] = (static_cast<std::uint64_t>(65535 - static_cast<int>(r)) << 32) |
+              (static_cast<std::uint64_t>(kp.pt.y) << 16) | static_cast<std::uint64_t>(kp.pt.x);
+  }
+  return true;
+}
+
+}  // namespace
 
 void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n) {
   if (keypoints.size() <= n) {
@@ -298,22 +330,37 @@ void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n) {
     keypoints.clear();
     return;
   }
-  thread_local std::vector<cv::KeyPoint> ranked;
-  ranked.assign(keypoints.begin(), keypoints.end());
+  // The n-th strongest by a partial sort; then, in their order, every keypoint at least as strong
+  // (the order is total: exactly n are).
+  thread_local std::vector<std::uint64_t> key_buffer, ranked_buffer;
+  std::vector<std::uint64_t>& keys = key_buffer;
+  if (packedStrengthKeys(keypoints, keys)) {
+    std::vector<std::uint64_t>& ranked = ranked_buffer;
+    ranked.assign(keys.begin(), keys.end());
+    std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(n - 1), ranked.end());
+    const std::uint64_t weakest = ranked[n - 1];
+    size_t kept = 0;
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+      if (keys[i] <= weakest) {
+        keypoints[kept++] = keypoints[i];
+      }
+    }
+    keypoints.resize(kept);
+    return;
+  }
+  std::vector<cv::KeyPoint> ranked = keypoints;
   std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(n - 1), ranked.end(), stronger);
-  const cv::KeyPoint weakest = ranked[n - 1];  // the order is total: exactly n are at least as strong
+  const cv::KeyPoint weakest = ranked[n - 1];
   keypoints.erase(std::remove_if(keypoints.begin(), keypoints.end(),
                                  [&weakest](const cv::KeyPoint& kp) { return stronger(weakest, kp); }),
                   keypoints.end());
 }
 
-std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size) {
-  if (n <= 0) {
-    return {};
-  }
-  if (static_cast<int>(keypoints.size()) <= n) {
-    return keypoints;
-  }
+namespace {
+
+// selectSpread of `keypoints` (more than n > 0 of them) into `selected`.
+void selectSpreadInto(const std::vector<cv::KeyPoint>& keypoints, int n, cv::Size size,
+                      std::vector<cv::KeyPoint>& selected) {
   const int cell = std::max(1, cvRound(std::sqrt(static_cast<double>(size.area()) / n)));
   const int cols = (size.width + cell - 1) / cell;
   const int rows = (size.height + cell - 1) / cell;
@@ -322,19 +369,50 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
     const int by = std::clamp(static_cast<int>(kp.pt.y) / cell, 0, rows - 1);
     return by * cols + bx;
   };
-  // All keypoints in one array, bucket after bucket, each bucket best first.
-  thread_local std::vector<int> bucket_of;
-  thread_local std::vector<int> order;
-  bucket_of.resize(keypoints.size());
+  // All keypoints in one order, bucket after bucket, each bucket strongest first: by packed keys
+  // (bucket, strength) where the keypoints allow, else by comparison.
+  thread_local std::vector<std::uint64_t> key_buffer;
+  thread_local std::vector<int> order_buffer, bucket_buffer;
+  std::vector<std::uint64_t>& keys = key_buffer;
+  std::vector<int>& order = order_buffer;
+  std::vector<int>& bucket_of = bucket_buffer;
   order.resize(keypoints.size());
+  bucket_of.resize(keypoints.size());
   for (size_t i = 0; i < keypoints.size(); ++i) {
     bucket_of[i] = bucketOf(keypoints[i]);
-    order[i] = static_cast<int>(i);
   }
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return bucket_of[a] != bucket_of[b] ? bucket_of[a] < bucket_of[b] : stronger(keypoints[a], keypoints[b]);
-  });
-  thread_local std::vector<int> begin, end;
+  if (keypoints.size() < (1u << 16) && cols * rows < (1 << 15) && packedStrengthKeys(keypoints, keys)) {
+    // (bucket, 65535 - response, y, x) does not fit 64 bits: sort (bucket, 65535 - response,
+    // index) and break the rare ties of equal strength by position afterwards.
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+      keys[i] = (static_cast<std::uint64_t>(bucket_of[i]) << 48) | ((keys[i] >> 32) << 16) | i;
+    }
+    std::sort(keys.begin(), keys.end());
+    for (size_t i = 0; i < keys.size(); ++i) {
+      order[i] = static_cast<int>(keys[i] & 0xFFFF);
+    }
+    for (size_t i = 0; i < keys.size();) {
+      size_t j = i + 1;
+      while (j < keys.size() && (keys[j] >> 16) == (keys[i] >> 16)) {
+        ++j;
+      }
+      if (j - i > 1) {
+        std::sort(order.begin() + static_cast<std::ptrdiff_t>(i), order.begin() + static_cast<std::ptrdiff_t>(j),
+                  [&](int a, int b) { return stronger(keypoints[a], keypoints[b]); });
+      }
+      i = j;
+    }
+  } else {
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+      order[i] = static_cast<int>(i);
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return bucket_of[a] != bucket_of[b] ? bucket_of[a] < bucket_of[b] : stronger(keypoints[a], keypoints[b]);
+    });
+  }
+  thread_local std::vector<int> begin_buffer, end_buffer;
+  std::vector<int>& begin = begin_buffer;
+  std::vector<int>& end = end_buffer;
   begin.clear();
   end.clear();
   for (size_t i = 0; i < order.size(); ++i) {
@@ -345,9 +423,9 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
     ++end.back();
   }
   // Round r takes the r-th best of every cell; the last, partial round keeps its best responses.
-  std::vector<cv::KeyPoint> selected;
-  selected.reserve(n);
-  thread_local std::vector<cv::KeyPoint> round;
+  selected.clear();
+  thread_local std::vector<cv::KeyPoint> round_buffer;
+  std::vector<cv::KeyPoint>& round = round_buffer;
   for (int rank = 0; static_cast<int>(selected.size()) < n; ++rank) {
     round.clear();
     for (size_t b = 0; b < begin.size(); ++b) {
@@ -362,6 +440,19 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
     }
     selected.insert(selected.end(), round.begin(), round.end());
   }
+}
+
+}  // namespace
+
+std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size) {
+  if (n <= 0) {
+    return {};
+  }
+  if (static_cast<int>(keypoints.size()) <= n) {
+    return keypoints;
+  }
+  std::vector<cv::KeyPoint> selected;
+  selectSpreadInto(keypoints, n, size, selected);
   return selected;
 }
 
@@ -428,7 +519,11 @@ struct OrbExtractor::Workspace {
   };
   std::vector<Level> levels;
   std::vector<cv::Mat> pyramid;
+  std::vector<cv::Size> sizes;
+  std::vector<int> budgets, first;
+  std::vector<cv::KeyPoint> selected;
   std::vector<std::vector<int>> stripes;  // the levels each thread takes
+  std::vector<double> load;
 };
 
 struct OrbExtractor::Pool {
@@ -466,7 +561,8 @@ namespace {
 // Runs work(level) for every level, on `threads` threads: levels go to threads largest first,
 // each to the least loaded one. Exceptions are passed on to the caller.
 template <typename Work>
-void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<std::vector<int>>& stripes, Work work) {
+void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<std::vector<int>>& stripes,
+                  std::vector<double>& load, Work work) {
   const int n = static_cast<int>(pyramid.size());
   const int count = std::min(threads, n);
   if (count <= 1) {
@@ -476,7 +572,7 @@ void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<
     return;
   }
   stripes.resize(count);
-  std::vector<double> load(count, 0.0);
+  load.assign(count, 0.0);
   for (auto& stripe : stripes) {
     stripe.clear();
   }
@@ -546,8 +642,11 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   } return_to_pool{this, ws};
 
   const OrbParams& orb = params_.orb;
-  const std::vector<cv::Size> sizes =
-      out.image.empty() ? std::vector<cv::Size>{} : pyramidSizes(out.image.size(), orb.n_levels, orb.scale_factor);
+  std::vector<cv::Size>& sizes = ws->sizes;
+  sizes.clear();
+  if (!out.image.empty()) {
+    pyramidSizes(out.image.size(), orb.n_levels, orb.scale_factor, sizes);
+  }
   const int n_levels = static_cast<int>(sizes.size());
   ws->levels.resize(std::max(ws->levels.size(), sizes.size()));
   ws->pyramid.resize(sizes.size());
@@ -564,11 +663,12 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   out.timings.pyramid_ms = clock.lap();
 
   // Thresholds and corners, level by level.
+  out.cell_thresholds.release();  // level 0's thresholds again below
   out.level_thresholds.resize(sizes.size());
   for (cv::Mat& t : out.level_thresholds) {
     ownOrRelease(t);
   }
-  forEachLevel(ws->pyramid, orb.threads, ws->stripes, [&](int level) {
+  forEachLevel(ws->pyramid, orb.threads, ws->stripes, ws->load, [&](int level) {
     Workspace::Level& l = ws->levels[level];
     l.timings = StageTimings();
     Stopwatch level_clock;
@@ -592,7 +692,8 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
 
   if (orb.max_features > 0) {
     // Budget per level; what a level cannot use passes on to the next one.
-    const std::vector<int> budgets = levelBudgets(orb.max_features, orb.n_levels, orb.scale_factor);
+    std::vector<int>& budgets = ws->budgets;
+    levelBudgets(orb.max_features, orb.n_levels, orb.scale_factor, budgets);
     int carry = 0;
     for (int level = 0; level < n_levels; ++level) {
       std::vector<cv::KeyPoint>& kps = ws->levels[level].keypoints;
@@ -600,8 +701,11 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
       if (orb.candidate_ratio > 0.0) {
         keepStrongest(kps, static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
       }
-      if (static_cast<int>(kps.size()) > budget) {
-        kps = selectSpread(std::move(kps), budget, sizes[level]);
+      if (budget <= 0) {
+        kps.clear();
+      } else if (static_cast<int>(kps.size()) > budget) {
+        selectSpreadInto(kps, budget, sizes[level], ws->selected);
+        kps.swap(ws->selected);
       }
       carry = budget - static_cast<int>(kps.size());
     }
@@ -609,14 +713,15 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   out.timings.select_ms = clock.lap();
 
   // Orientation and descriptors, each level into its own rows.
-  std::vector<int> first(n_levels + 1, 0);
+  std::vector<int>& first = ws->first;
+  first.assign(n_levels + 1, 0);
   for (int level = 0; level < n_levels; ++level) {
     first[level + 1] = first[level] + static_cast<int>(ws->levels[level].keypoints.size());
   }
   ownOrRelease(out.descriptors);
   out.descriptors.create(first[n_levels], kDescriptorBytes, CV_8U);
   out.keypoints.resize(static_cast<size_t>(first[n_levels]));
-  forEachLevel(ws->pyramid, orb.threads, ws->stripes, [&](int level) {
+  forEachLevel(ws->pyramid, orb.threads, ws->stripes, ws->load, [&](int level) {
     Workspace::Level& l = ws->levels[level];
     if (l.keypoints.empty()) {
       return;
