@@ -11,6 +11,22 @@ export ROS_HOME=$(mktemp -d /tmp/enhanced_orb_test.XXXXXX)
 export ROS_LOG_DIR=$ROS_HOME/log
 rm -rf "$ROOT/build/test_results"
 make -C "$ROOT/build" run_tests -j1 >"$ROOT/build/run_tests.log" 2>&1
+# The identity tests once more on a build with only the portable kernels (-DENHANCED_ORB_PORTABLE=ON).
+PORTABLE="$ROOT/build_portable"
+PORTABLE_XML="$ROOT/build/test_results/enhanced_orb/gtest-test_identity_portable.xml"
+mkdir -p "$(dirname "$PORTABLE_XML")"
+portable_failed() {
+  printf '<testsuites><testsuite name="portable" tests="1" failures="1"><testcase classname="portable" name="%s">
+<failure message="see build_portable.log"/></testcase></testsuite></testsuites>\n' "$1" >"$PORTABLE_XML"
+}
+if cmake -S "$ROOT" -B "$PORTABLE" -DENHANCED_ORB_PORTABLE=ON -DCATKIN_DEVEL_PREFIX="$PORTABLE/devel" \
+    -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 >"$PORTABLE.log" 2>&1 \
+    && make -C "$PORTABLE" -j"$(nproc)" test_identity >>"$PORTABLE.log" 2>&1; then
+  "$PORTABLE/devel/lib/enhanced_orb/test_identity" --gtest_output=xml:"$PORTABLE_XML" >>"$PORTABLE.log" 2>&1 \
+    || [ -s "$PORTABLE_XML" ] || portable_failed "test_identity did not finish"
+else
+  portable_failed "build"
+fi
 # A short fuzzing run of the core library counts as one more test.
 bash "$ROOT/scripts/fuzz.sh" 60 --junit "$ROOT/build/test_results/enhanced_orb/fuzz-core.xml"
 python3 "$ROOT/scripts/summarize_tests.py" "$ROOT/build/test_results"

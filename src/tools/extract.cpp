@@ -1,5 +1,6 @@
 // enhanced_orb_extract: runs the extractor on image files and writes one YAML file per image.
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "enhanced_orb/draw.h"
@@ -37,11 +39,14 @@ options:
   --no-enhance           skip the enhancement, keep the adaptive threshold
   --save-enhanced        also write DIR/<stem>_enhanced.png
   --save-annotated       also write DIR/<stem>_annotated.png
+  --time-opencv          also time cv::ORB (same budget, 8 levels, 1.2; every corner when the budget
+                         is 0) on each image, and end with the means and their ratio
   --max-pixels N         refuse images larger than N pixels (default 33554432 = 32 Mpixel, as the
                          nodelets), read from the file header before decoding where the format allows
   -h, --help             this text
 parameters (README "Parameters" gives each one's meaning, default and range):
   --max-features N  --candidate-ratio X  --n-levels N  --scale-factor X
+  --threads N (threads of one extraction, default 1 so that timings compare; results are the same)
   --tone-curve equalize|gamma  --tone-tiles N  --alpha X  --tau X  --beta X  --sharpening X
   --blur-ksize N  --blur-sigma X  --gamma-mode auto|always|never  --std-threshold X
   --grid-size N  --threshold-scale X  --c-min N  --threshold-mode adaptive|fixed  --fast-threshold N
@@ -61,6 +66,7 @@ struct Options {
   bool no_enhance = false;
   bool save_enhanced = false;
   bool save_annotated = false;
+  bool time_opencv = false;
   long long max_pixels = enhanced_orb::evaluation::kMaxPixels;
   std::string output;
   std::vector<std::string> images;
@@ -80,7 +86,8 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
   const std::map<std::string, bool*> flags = {{"--baseline", &opt.baseline},
                                               {"--no-enhance", &opt.no_enhance},
                                               {"--save-enhanced", &opt.save_enhanced},
-                                              {"--save-annotated", &opt.save_annotated}};
+                                              {"--save-annotated", &opt.save_annotated},
+                                              {"--time-opencv", &opt.time_opencv}};
   std::vector<std::pair<std::string, std::string>> settings;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -240,7 +247,14 @@ int main(int argc, char** argv) {
   }
   try {
     fs::create_directories(opt.output);
+    // OpenCV's pool as large as the extraction asks, so that --threads 1 is one thread throughout.
+    cv::setNumThreads(opt.params.orb.threads);
     const enhanced_orb::OrbExtractor extractor(opt.params);
+    Extraction r;  // buffers reused from image to image
+    const cv::Ptr<cv::ORB> opencv =
+        cv::ORB::create(opt.params.orb.max_features > 0 ? opt.params.orb.max_features : 1000000, 1.2f, 8);
+    double sum_enhance = 0.0, sum_extract = 0.0, sum_opencv = 0.0;
+    int timed = 0;
     int failures = 0;
     for (size_t i = 0; i < opt.images.size(); ++i) {
       const std::string& path = opt.images[i];
@@ -251,7 +265,7 @@ int main(int argc, char** argv) {
         ++failures;
         continue;
       }
-      const Extraction r = extractor.extract(gray);
+      extractor.extract(gray, r);
       const fs::path& stem = stems[i];
       writeResult(stem.string() + ".yml", r);
       if (opt.save_enhanced) {
@@ -265,7 +279,29 @@ int main(int argc, char** argv) {
                                                enhanced_orb::DrawOptions{true, false, true, true, 300}));
       }
       std::cout << path << ": " << r.keypoints.size() << " keypoints, enhance " << r.timings.enhance_ms
-                << " ms, extract " << r.timings.extractMs() << " ms\n";
+                << " ms, extract " << r.timings.extractMs() << " ms";
+      sum_enhance += r.timings.enhance_ms;
+      sum_extract += r.timings.extractMs();
+      ++timed;
+      if (opt.time_opencv) {
+        std::vector<cv::KeyPoint> kps;
+        cv::Mat descriptors;
+        cv::setNumThreads(1);  // cv::ORB on one thread, whatever --threads says
+        const auto start = std::chrono::steady_clock::now();
+        opencv->detectAndCompute(gray, cv::noArray(), kps, descriptors);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        cv::setNumThreads(opt.params.orb.threads);
+        sum_opencv += ms;
+        std::cout << ", cv::ORB " << ms << " ms (" << kps.size() << " keypoints)";
+      }
+      std::cout << "\n";
+    }
+    if (opt.time_opencv && timed > 0) {
+      const double ours = (sum_enhance + sum_extract) / timed;
+      std::cout << "mean of " << timed << " images, " << opt.params.orb.threads << " thread(s): enhance "
+                << sum_enhance / timed << " ms + extract " << sum_extract / timed << " ms = " << ours
+                << " ms; cv::ORB (1 thread) " << sum_opencv / timed << " ms; ratio " << ours / (sum_opencv / timed)
+                << "\n";
     }
     return failures == 0 ? 0 : 1;
   } catch (const std::exception& e) {

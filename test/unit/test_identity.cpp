@@ -1,6 +1,7 @@
 // The extractor against the straightforward reference (reference_extractor.h), bit for bit: on the
 // shared EuRoC frames, for every mode and budget, every instruction set this machine runs and one
 // and two threads; and each SIMD kernel against its scalar reference.
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
+#include "kernels/tone_curve.h"
 #include "reference_extractor.h"
 #include "test_images.h"
 
@@ -114,6 +116,68 @@ TEST(Kernels, FastScoreOfEveryInstructionSetEqualsTheScalarReference) {
       }
     }
   }
+}
+
+TEST(Kernels, ToneCurveOfEveryInstructionSetEqualsTheScalarReference) {
+  cv::RNG rng(9);
+  std::vector<float> curves(8 * 256), weights(2 * 301), f(301);
+  for (int k = 0; k < 4; ++k) {
+    float value = rng.uniform(0.0f, 20.0f);
+    for (int i = 0; i < 256; ++i) {
+      curves[512 * k + i] = value;
+      value += rng.uniform(0.0f, 2.0f);
+    }
+    for (int i = 0; i < 256; ++i) {
+      curves[512 * k + 256 + i] = i < 255 ? curves[512 * k + i + 1] - curves[512 * k + i] : 0.0f;
+    }
+  }
+  for (int x = 0; x < 301; ++x) {
+    weights[301 + x] = rng.uniform(0.0f, 1.0f);
+    weights[x] = 1.0f - weights[301 + x];
+    // Levels across the range, the clamped ends, exact integers and values just below them.
+    f[x] = x % 7 == 0    ? static_cast<float>(x % 256)
+           : x % 11 == 0 ? std::nextafter(255.0f, 0.0f)
+           : x % 13 == 0 ? -3.0f
+           : x % 17 == 0 ? 300.0f
+                         : rng.uniform(0.0f, 255.0f);
+  }
+  kernels::ToneCurveRun run{};
+  for (int k = 0; k < 4; ++k) {
+    run.value[k] = curves.data() + 512 * k;
+    run.slope[k] = curves.data() + 512 * k + 256;
+  }
+  run.w_left = weights.data();
+  run.w_right = weights.data() + 301;
+  run.wy_top = 0.625f;
+  run.wy_bottom = 0.375f;
+  std::vector<std::uint8_t> expected8(301), got8(301);
+  std::vector<float> expected32(301), got32(301);
+  kernels::toneCurveRunScalar(f.data(), 301, run, expected8.data(), nullptr);
+  kernels::toneCurveRunScalar(f.data(), 301, run, nullptr, expected32.data());
+  for (SimdLevel level : supportedSimdLevels()) {
+    for (int n : {301, 64, 17, 3}) {
+      kernels::toneCurveRun(level, f.data(), n, run, got8.data(), nullptr);
+      kernels::toneCurveRun(level, f.data(), n, run, nullptr, got32.data());
+      for (int x = 0; x < n; ++x) {
+        ASSERT_EQ(got8[x], expected8[x]) << toString(level) << ", n " << n << ", x " << x;
+        ASSERT_EQ(got32[x], expected32[x]) << toString(level) << ", n " << n << ", x " << x;
+      }
+    }
+  }
+}
+
+TEST(Kernels, PortableBuildsHaveNoWiderKernels) {
+  const std::vector<SimdLevel> levels = supportedSimdLevels();
+  ASSERT_GE(levels.size(), 2u);
+  EXPECT_EQ(levels[0], SimdLevel::kScalar);
+  EXPECT_EQ(levels[1], SimdLevel::kVector128);
+#if !defined(ENHANCED_ORB_X86_KERNELS)
+  EXPECT_EQ(levels.size(), 2u);
+#endif
+  SimdScope scope;
+  EXPECT_EQ(setSimdLevel(SimdLevel::kScalar), SimdLevel::kScalar);
+  EXPECT_EQ(activeSimdLevel(), SimdLevel::kScalar);
+  EXPECT_EQ(setSimdLevel(SimdLevel::kAvx512), levels.back());
 }
 
 TEST(Kernels, FastScoreIsTheLeastThresholdAtWhichCvFastRejects) {
