@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -522,8 +523,6 @@ struct OrbExtractor::Workspace {
   std::vector<cv::Size> sizes;
   std::vector<int> budgets, first;
   std::vector<cv::KeyPoint> selected;
-  std::vector<std::vector<int>> stripes;  // the levels each thread takes
-  std::vector<double> load;
 };
 
 struct OrbExtractor::Pool {
@@ -558,12 +557,11 @@ void OrbExtractor::release(std::unique_ptr<Workspace> ws) const {
 
 namespace {
 
-// Runs work(level) for every level, on `threads` threads: levels go to threads largest first,
-// each to the least loaded one. Exceptions are passed on to the caller.
+// Runs work(level) for levels 0..n-1 on up to `threads` threads: each takes the next level not yet
+// taken (the largest first) until none is left, so that no thread waits on another's share.
+// Exceptions are passed on to the caller.
 template <typename Work>
-void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<std::vector<int>>& stripes,
-                  std::vector<double>& load, Work work) {
-  const int n = static_cast<int>(pyramid.size());
+void forEachLevel(int n, int threads, Work work) {
   const int count = std::min(threads, n);
   if (count <= 1) {
     for (int level = 0; level < n; ++level) {
@@ -571,16 +569,7 @@ void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<
     }
     return;
   }
-  stripes.resize(count);
-  load.assign(count, 0.0);
-  for (auto& stripe : stripes) {
-    stripe.clear();
-  }
-  for (int level = 0; level < n; ++level) {  // levels shrink: in level order is largest first
-    const int least = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
-    stripes[least].push_back(level);
-    load[least] += static_cast<double>(pyramid[level].total());
-  }
+  std::atomic<int> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
   cv::parallel_for_(
@@ -588,7 +577,7 @@ void forEachLevel(const std::vector<cv::Mat>& pyramid, int threads, std::vector<
       [&](const cv::Range& range) {
         for (int s = range.start; s < range.end; ++s) {
           try {
-            for (int level : stripes[s]) {
+            for (int level = next++; level < n; level = next++) {
               work(level);
             }
           } catch (...) {
@@ -650,41 +639,59 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   const int n_levels = static_cast<int>(sizes.size());
   ws->levels.resize(std::max(ws->levels.size(), sizes.size()));
   ws->pyramid.resize(sizes.size());
-  for (int level = 0; level < n_levels; ++level) {
-    if (level == 0) {
-      ws->pyramid[0] = out.image;
-    } else {
-      cv::Mat& image = ws->levels[level].image;
-      image.create(sizes[level], CV_8UC1);
-      cv::resize(ws->pyramid[level - 1], image, sizes[level], 0, 0, cv::INTER_LINEAR_EXACT);
-      ws->pyramid[level] = image;
-    }
+  if (n_levels > 0) {
+    ws->pyramid[0] = out.image;
   }
-  out.timings.pyramid_ms = clock.lap();
+  // Level l is level l - 1 resized: whichever thread first needs a level builds it and the ones
+  // before it, in order, while others work on the levels that are there.
+  std::mutex pyramid_mutex;
+  std::atomic<int> built{1};
+  auto ensureLevel = [&](int level, double& ms) {
+    if (built.load(std::memory_order_acquire) > level) {
+      return;
+    }
+    Stopwatch pyramid_clock;
+    std::lock_guard<std::mutex> lock(pyramid_mutex);
+    for (int next = built.load(std::memory_order_relaxed); next <= level; ++next) {
+      cv::Mat& image = ws->levels[next].image;
+      image.create(sizes[next], CV_8UC1);
+      cv::resize(ws->pyramid[next - 1], image, sizes[next], 0, 0, cv::INTER_LINEAR_EXACT);
+      ws->pyramid[next] = image;
+      built.store(next + 1, std::memory_order_release);
+    }
+    ms += pyramid_clock.lap();
+  };
 
-  // Thresholds and corners, level by level.
+  // Per level: the thresholds, the corners, and cv::ORB's smoothing for the descriptors.
   out.cell_thresholds.release();  // level 0's thresholds again below
   out.level_thresholds.resize(sizes.size());
   for (cv::Mat& t : out.level_thresholds) {
     ownOrRelease(t);
   }
-  forEachLevel(ws->pyramid, orb.threads, ws->stripes, ws->load, [&](int level) {
+  forEachLevel(n_levels, orb.threads, [&](int level) {
     Workspace::Level& l = ws->levels[level];
     l.timings = StageTimings();
+    ensureLevel(level, l.timings.pyramid_ms);
+    const cv::Mat& image = ws->pyramid[level];
     Stopwatch level_clock;
     cv::Mat& thresholds = out.level_thresholds[level];
     if (orb.threshold_mode == ThresholdMode::kAdaptive) {
-      cellThresholds(ws->pyramid[level], params_.threshold, l.threshold, thresholds);
+      cellThresholds(image, params_.threshold, l.threshold, thresholds);
     } else {
       thresholds.create(params_.threshold.grid_size, params_.threshold.grid_size, CV_32S);
       thresholds.setTo(cv::Scalar(orb.fast_threshold));
     }
     l.timings.threshold_ms = level_clock.lap();
-    detectCorners(ws->pyramid[level], thresholds, l.corners, l.keypoints);
+    detectCorners(image, thresholds, l.corners, l.keypoints);
     l.timings.fast_ms = level_clock.lap();
+    if (!l.keypoints.empty()) {
+      smoothForDescription(image, l.bordered, l.smoothed);
+    }
+    l.timings.descriptor_ms = level_clock.lap();
   });
   out.cell_thresholds = n_levels > 0 ? out.level_thresholds.front() : cv::Mat();
   for (int level = 0; level < n_levels; ++level) {
+    out.timings.pyramid_ms += ws->levels[level].timings.pyramid_ms;
     out.timings.threshold_ms += ws->levels[level].timings.threshold_ms;
     out.timings.fast_ms += ws->levels[level].timings.fast_ms;
   }
@@ -721,7 +728,7 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   ownOrRelease(out.descriptors);
   out.descriptors.create(first[n_levels], kDescriptorBytes, CV_8U);
   out.keypoints.resize(static_cast<size_t>(first[n_levels]));
-  forEachLevel(ws->pyramid, orb.threads, ws->stripes, ws->load, [&](int level) {
+  forEachLevel(n_levels, orb.threads, [&](int level) {
     Workspace::Level& l = ws->levels[level];
     if (l.keypoints.empty()) {
       return;
@@ -729,7 +736,6 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
     Stopwatch level_clock;
     computeOrientation(ws->pyramid[level], l.keypoints);
     l.timings.orientation_ms = level_clock.lap();
-    smoothForDescription(ws->pyramid[level], l.bordered, l.smoothed);
     describe(l.smoothed, l.keypoints, out.descriptors, first[level]);
     const float scale = levelScale(orb.scale_factor, level);
     for (size_t i = 0; i < l.keypoints.size(); ++i) {
@@ -739,7 +745,7 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
       kp.octave = level;
       out.keypoints[first[level] + i] = kp;
     }
-    l.timings.descriptor_ms = level_clock.lap();
+    l.timings.descriptor_ms += level_clock.lap();
   });
   for (int level = 0; level < n_levels; ++level) {
     out.timings.orientation_ms += ws->levels[level].timings.orientation_ms;
