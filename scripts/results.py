@@ -220,60 +220,101 @@ def main():
                   f"{sum(ms) / len(ms):.2f} | {max(ms):.2f} |")
     w("")
 
-    w("## Benchmarks (Google Benchmark, single-threaded)\n")
+    w("## Speed (Google Benchmark, one run)\n")
     if bench:
         frames_text = context.get("frames", "?").replace(shared, "../shared")
-        w(f"`devel/lib/enhanced_orb/benchmark_extraction`, on {frames_text}; "
-          f"{context.get('num_cpus', '?')} CPUs at {context.get('mhz_per_cpu', '?')} MHz, "
-          f"build {context.get('library_build_type', '?')} (of libbenchmark; the package is built Release).\n")
-        w("| benchmark | what | ms per frame | counters |")
-        w("| --- | --- | ---: | --- |")
-        times = {}
+        w(f"`devel/lib/enhanced_orb/benchmark_extraction --benchmark_repetitions=3 "
+          f"--benchmark_enable_random_interleaving=true`, on {frames_text}; {context.get('num_cpus', '?')} CPUs "
+          f"at {context.get('mhz_per_cpu', '?')} MHz, widest instruction set here: {context.get('simd', '?')}. "
+          "Medians of 3 repetitions run interleaved with every other benchmark, so that the machine's load "
+          "(2 shared cores) falls on all methods alike; the ratios are to cv::ORB at the same budget "
+          "(`cv::ORB::create(N, 1.2f, 8)`, `detectAndCompute`, one thread), measured in the same run. "
+          "Enhancement included; allocations are heap allocations per frame (operator new and cv::Mat "
+          "buffers) once the workspaces are warm.\n")
+        times, counters = {}, {}
         for bm in bench:
-            if bm.get("run_type") == "aggregate":
+            if bm.get("run_type") == "aggregate" and bm.get("aggregate_name") != "median":
                 continue
+            if bm.get("run_type") != "aggregate" and any(b.get("run_type") == "aggregate" for b in bench):
+                continue
+            name = bm.get("run_name", bm["name"]).replace("_median", "")
             ms = bm["real_time"] if bm.get("time_unit") == "ms" else bm["real_time"] / 1e6
-            times[bm["name"]] = ms
-            counters = ", ".join(f"{k} {bm[k]:.0f}" for k in ("corners", "keypoints") if k in bm)
-            w(f"| `{bm['name']}` | {bm.get('label', '')} | {ms:.3f} | {counters} |")
-        imp1k, cv1k = times.get("BM_Frame/method:1/budget:1000"), times.get("BM_Frame/method:2/budget:1000")
-        imp, base = times.get("BM_Frame/method:1/budget:0"), times.get("BM_Frame/method:0/budget:0")
-        enh = times.get("BM_Enhance/0")
-        def1k = times.get("BM_Frame/method:3/budget:1000")
-        w("\n| target | measured | |")
+            times[name] = ms
+            counters[name] = bm
+        def frame(method, budget, threads, simd):
+            return times.get(f"BM_Frame/method:{method}/budget:{budget}/threads:{threads}/simd:{simd}")
+        simd_names = {1: "sse2", 2: "avx2", 3: "avx512"}
+        best = max((int(n.rsplit(":", 1)[1]) for n in times if n.startswith("BM_Frame/") and "/method:3/" in n),
+                   default=3)
+        w("| budget | cv::ORB ms | default 1 thread | default 2 threads | baseline 1 thread | baseline 2 threads "
+          "| paper 1 thread | paper 2 threads |")
+        w("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for budget in (500, 1000, 2000, 0):
+            ref = frame(2, budget, 1, best)
+            if not ref:
+                continue
+            cells = [f"{ref:.2f}"]
+            for method in (3, 0, 1):
+                for threads in (1, 2):
+                    t = frame(method, budget, threads, best)
+                    cells.append(f"{t:.2f} (×{t / ref:.2f})" if t else "-")
+            w(f"| {budget or 'every corner'} | " + " | ".join(cells) + " |")
+        w("")
+        w("Each instruction set at 1000 features, one thread (the scalar kernels are the references of the "
+          "tests, not a path):\n")
+        w("| instruction set | default mode ms | ratio | baseline ms | ratio |")
+        w("| --- | ---: | ---: | ---: | ---: |")
+        ref = frame(2, 1000, 1, best)
+        for simd in sorted(simd_names):
+            d, b0 = frame(3, 1000, 1, simd), frame(0, 1000, 1, simd)
+            if d and b0 and ref:
+                w(f"| {simd_names[simd]} | {d:.2f} | ×{d / ref:.2f} | {b0:.2f} | ×{b0 / ref:.2f} |")
+        w("")
+        def allocs(method, budget=1000, threads=1):
+            bm = counters.get(f"BM_Frame/method:{method}/budget:{budget}/threads:{threads}/simd:{best}")
+            return bm.get("allocs_per_frame", float("nan")) if bm else float("nan")
+        w(f"Allocations per frame at 1000 features: default mode {allocs(3):.0f}, baseline {allocs(0):.0f}, "
+          f"cv::ORB {allocs(2):.0f}. The extractor's own code allocates nothing in steady state (its "
+          "workspaces, pooled per concurrent call, keep every buffer); what remains are OpenCV's calls, "
+          "each of which builds its kernels and filter engine (`cv::GaussianBlur` for each level's "
+          "smoothing and the enhancement's filter, `cv::Sobel`, `cv::resize`), as cv::ORB's own do.\n")
+        d1, d2, ref1k = frame(3, 1000, 1, best), frame(3, 1000, 2, best), frame(2, 1000, 1, best)
+        sse = frame(3, 1000, 1, 1)
+        w("| target (default mode, 1000 features, enhancement included) | measured | |")
         w("| --- | ---: | --- |")
-        if imp1k and cv1k:
-            w(f"| 1000 features: enhanced ORB ≤ 1.0 × cv::ORB(1000, 1.2, 8) | ×{imp1k / cv1k:.2f} | "
-              f"{'met' if imp1k <= cv1k else f'missed by {100 * (imp1k / cv1k - 1):.0f} %'} |")
-        if def1k and cv1k:
-            w(f"| 1000 features: default mode ≤ 0.9 × cv::ORB(1000, 1.2, 8) | ×{def1k / cv1k:.2f} | "
-              f"{'met' if def1k <= 0.9 * cv1k else f'missed by {100 * (def1k / cv1k / 0.9 - 1):.0f} %'} "
-              f"(default-mode enhancement {times.get('BM_Enhance/2', float('nan')):.3f} ms) |")
-        if imp and base:
-            w(f"| every corner: enhanced ORB ≤ 1.25 × original ORB | ×{imp / base:.2f} | "
-              f"{'met' if imp <= 1.25 * base else f'missed by {100 * (imp / base / 1.25 - 1):.0f} %'} |")
-        if enh:
-            w(f"| enhancement < 1 ms for 752x480 | {enh:.3f} ms (gamma always: "
-              f"{times.get('BM_Enhance/1', float('nan')):.3f} ms) | {'met' if enh < 1.0 else 'missed'} |")
+        for label, value, limit in (("≤ 0.9 × cv::ORB on one thread", d1, 0.9), ("≤ 0.6 × cv::ORB on two threads", d2, 0.6),
+                                    ("portable SSE2 path ≤ 1.1 × cv::ORB", sse, 1.1)):
+            if value and ref1k:
+                r = value / ref1k
+                w(f"| {label} | ×{r:.2f} | {'met' if r <= limit else f'missed by {100 * (r / limit - 1):.0f} %'} |")
+        w("")
+        w("Stages (one frame, 8 levels; thresholds, corners and orientation on every corner the adaptive "
+          "thresholds find on the default mode's enhanced image):\n")
+        w("| benchmark | what | ms |")
+        w("| --- | --- | ---: |")
+        for name, ms in sorted(times.items()):
+            if not name.startswith("BM_Frame/"):
+                label = counters[name].get("label", "")
+                w(f"| `{name}` | {label} | {ms:.3f} |")
         profile_path = os.path.join(RESULTS, "callgrind.txt")
         if os.path.exists(profile_path):
             with open(profile_path) as f:
                 profile = f.read().rstrip()
             w("\nCallgrind (instructions, each stage with everything it calls) of `enhanced_orb_extract "
-              "--max-features 1000` on 5 frames, collected inside `OrbExtractor::extract` only:\n")
+              "--max-features 1000` on 5 frames, collected inside `OrbExtractor::extract` only (valgrind runs "
+              "the AVX2 kernels):\n")
             w("```\n" + profile + "\n```")
-        w("\n**Where the time goes.** With every corner, the stages add up as in the table: FAST on the "
-          "enhanced image with adaptive thresholds finds about 3.5 times the corners of a fixed 20, and "
-          "orientation (`BM_Orientation`) and rBRIEF description (`BM_Descriptors`, OpenCV's) each cost in "
-          "proportion to those corners: the extra time is the price of the extra keypoints, not of the "
-          "enhancement (`BM_Enhance`) or of the thresholds (`BM_Thresholds`: 200 Otsu thresholds, 25 cells "
-          "x 8 levels). At 1000 features (callgrind above) the largest share is FAST: "
-          "it examines and suppresses every corner the low thresholds let through, before the spatial "
-          "selection keeps 1000, where cv::ORB with one threshold of 20 has far fewer candidates; then "
-          "description (OpenCV's, including the 7x7 smoothing of every level), the pyramid "
-          "(`cv::resize`, as cv::ORB builds it) and the 200 Otsu thresholds. Lowering that cost means "
-          "detecting fewer candidates (a higher `c_min`, or ORB-SLAM's approach of a high threshold "
-          "first and `c_min` only for cells that come back empty), which departs from the paper.\n")
+        w("\n**Where the time goes.** The extraction itself (baseline column) is cheaper than cv::ORB's: "
+          "FAST from one vectorised score map per level, the suppression on whole rows, rBRIEF written in "
+          "place, 16-bit moments for the orientation, packed-key selection. What keeps the default mode above "
+          "cv::ORB on one thread is its enhancement (`BM_Enhance/2/1`): a float 5x5 blur, two Sobel passes, "
+          "a gradient magnitude and square root for the edge weights, sixteen weighted histograms summed in "
+          "double precision in pixel order, and four curves read and blended per pixel; every step is kept "
+          "bit for bit as the equal-budget evaluation measured it (the identity tests compare it with a "
+          "reference written as separate OpenCV passes), which rules out reordering the sums or contracting "
+          "the products. Its second largest cost is not its own: `cv::resize` for the pyramid and OpenCV's "
+          "7x7 smoothing of every level, which cv::ORB pays too and which must stay OpenCV's for the "
+          "descriptors to be cv::ORB's bit for bit.\n")
     else:
         w("(benchmark.json missing: run scripts/results.sh)\n")
 

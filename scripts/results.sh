@@ -28,6 +28,7 @@ echo "results: evaluation on $EUROC"
 
 echo "results: benchmarks"
 "$ROOT/devel/lib/enhanced_orb/benchmark_extraction" --frames "$EUROC/mav0/cam0/data" --benchmark_min_time=0.5 \
+  --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
   --benchmark_out="$OUT/benchmark.json" --benchmark_out_format=json >/dev/null
 
 echo "results: callgrind profile of the enhanced ORB at 1000 features (5 frames)"
