@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "enhanced_orb/orb_extractor.h"
 
 using namespace enhanced_orb;
@@ -12,7 +14,11 @@ std::vector<Params> allModes() {
   always.enhance.gamma_mode = GammaMode::kAlways;
   Params budget;
   budget.orb.max_features = 500;
-  return {improved, always, budget, Params::baseline()};
+  Params parallel;
+  parallel.orb.threads = 3;  // more threads than the rows of the smallest images
+  Params paper_parallel = Params::paper();
+  paper_parallel.orb.threads = 2;
+  return {improved, always, budget, Params::baseline(), parallel, paper_parallel};
 }
 
 void expectDefined(const Extraction& r, const cv::Mat& input, const Params& p) {
@@ -55,6 +61,29 @@ TEST(Degenerate, TinyImages) {
         EXPECT_TRUE(r.keypoints.empty()) << size;
       }
     }
+  }
+}
+
+TEST(Degenerate, ReusedOutputAcrossSizesAndAnEmptyFrame) {
+  // One Extraction reused over frames of changing size, an empty one among them: each result is
+  // that of a fresh call.
+  cv::setNumThreads(2);
+  Params p;
+  p.orb.threads = 2;
+  const OrbExtractor extractor(p);
+  Extraction reused;
+  cv::RNG rng(4);
+  for (cv::Size size : {cv::Size(640, 480), cv::Size(0, 0), cv::Size(97, 61), cv::Size(640, 480), cv::Size(3, 2)}) {
+    cv::Mat image(size, CV_8UC1);
+    if (!image.empty()) {
+      rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+      cv::GaussianBlur(image, image, cv::Size(3, 3), 0);
+    }
+    extractor.extract(image, reused);
+    const Extraction fresh = extractor.extract(image);
+    ASSERT_EQ(reused.keypoints.size(), fresh.keypoints.size()) << size;
+    EXPECT_EQ(cv::norm(reused.descriptors, fresh.descriptors, cv::NORM_INF), 0.0) << size;
+    EXPECT_EQ(reused.image.size(), size);
   }
 }
 
