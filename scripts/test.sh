@@ -27,6 +27,20 @@ if cmake -S "$ROOT" -B "$PORTABLE" -DENHANCED_ORB_PORTABLE=ON -DCATKIN_DEVEL_PRE
 else
   portable_failed "build"
 fi
+# The kernels built for AVX2 / AVX-512 must not define a function the linker could pick for the
+# whole library (a weak symbol: an inline function or template instance), which a CPU without
+# that instruction set would then run.
+WEAK_XML="$ROOT/build/test_results/enhanced_orb/kernels-weak-symbols.xml"
+weak=$(for o in "$ROOT"/build/CMakeFiles/enhanced_orb_core.dir/src/core/kernels/*avx*.o; do
+  nm -C "$o" | grep -E " [WVu] " | sed "s|^|$(basename "$o"): |"; done)
+if [ -n "$weak" ] || { [ "$(uname -m)" = x86_64 ] \
+    && ! ls "$ROOT"/build/CMakeFiles/enhanced_orb_core.dir/src/core/kernels/*avx*.o >/dev/null 2>&1; }; then
+  printf '<testsuites><testsuite name="kernels" tests="1" failures="1"><testcase classname="kernels" name="no_weak_symbols">
+<failure message="weak symbols in the AVX kernels, or no AVX kernel objects"/></testcase></testsuite></testsuites>\n' >"$WEAK_XML"
+  echo "$weak"
+else
+  printf '<testsuites><testsuite name="kernels" tests="1" failures="0"><testcase classname="kernels" name="no_weak_symbols"/></testsuite></testsuites>\n' >"$WEAK_XML"
+fi
 # A short fuzzing run of the core library counts as one more test.
 bash "$ROOT/scripts/fuzz.sh" 60 --junit "$ROOT/build/test_results/enhanced_orb/fuzz-core.xml"
 python3 "$ROOT/scripts/summarize_tests.py" "$ROOT/build/test_results"

@@ -19,41 +19,63 @@ cv::Rect gridCell(cv::Size size, int grid_size, int cx, int cy) {
   return cv::Rect(x0, y0, edge(size.width, cx + 1) - x0, edge(size.height, cy + 1) - y0);
 }
 
-int otsuThreshold(const CellHistogram& histogram) {
-  double n = 0.0;
-  double mu = 0.0;  // eq 23: the mean level mu_T of the whole cell
-  for (int i = 0; i < 256; ++i) {
-    n += histogram[i];
-    mu += i * static_cast<double>(histogram[i]);
+void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds) {
+  // The cells are worked on side by side, level by level: each cell's arithmetic is that of a
+  // single cell, and their divisions, which wait on one another within a cell, overlap.
+  struct State {
+    double scale, mu, q1, mu1, max_sigma;
+    int best;
+    bool empty;
+  };
+  State states[1024];
+  CV_Assert(count >= 0 && count <= 1024);
+  for (int c = 0; c < count; ++c) {
+    State& st = states[c];
+    double n = 0.0;
+    double mu = 0.0;  // eq 23: the mean level mu_T of the whole cell
+    for (int i = 0; i < 256; ++i) {
+      n += histograms[c][i];
+      mu += i * static_cast<double>(histograms[c][i]);
+    }
+    st.empty = n == 0.0;
+    st.scale = st.empty ? 0.0 : 1.0 / n;
+    st.mu = mu * st.scale;
+    st.q1 = 0.0;
+    st.mu1 = 0.0;
+    st.max_sigma = 0.0;
+    st.best = 0;
   }
-  if (n == 0.0) {
-    return 0;
-  }
-  const double scale = 1.0 / n;
-  mu *= scale;
   // Eqs 24-32, one level at a time: omega_0 (q1) and mu_0 (mu1) of the class below t, mu_1 (mu2)
-  // of the class above, and the between-class variance omega_0 omega_1 (mu_0 - mu_1)^2.
-  double q1 = 0.0;
-  double mu1 = 0.0;
-  double max_sigma = 0.0;
-  int best = 0;
+  // of the class above, and the between-class variance omega_0 omega_1 (mu_0 - mu_1)^2, in the
+  // floating-point steps of cv::threshold's THRESH_OTSU.
   for (int i = 0; i < 256; ++i) {
-    const double p_i = histogram[i] * scale;  // eq 21
-    mu1 *= q1;
-    q1 += p_i;
-    const double q2 = 1.0 - q1;
-    if (std::min(q1, q2) < FLT_EPSILON || std::max(q1, q2) > 1.0 - FLT_EPSILON) {
-      continue;
-    }
-    mu1 = (mu1 + i * p_i) / q1;
-    const double mu2 = (mu - q1 * mu1) / q2;
-    const double sigma = q1 * q2 * (mu1 - mu2) * (mu1 - mu2);
-    if (sigma > max_sigma) {  // ties keep the smallest t
-      max_sigma = sigma;
-      best = i;
+    for (int c = 0; c < count; ++c) {
+      State& st = states[c];
+      const double p_i = histograms[c][i] * st.scale;  // eq 21
+      st.mu1 *= st.q1;
+      st.q1 += p_i;
+      const double q2 = 1.0 - st.q1;
+      if (std::min(st.q1, q2) < FLT_EPSILON || std::max(st.q1, q2) > 1.0 - FLT_EPSILON) {
+        continue;
+      }
+      st.mu1 = (st.mu1 + i * p_i) / st.q1;
+      const double mu2 = (st.mu - st.q1 * st.mu1) / q2;
+      const double sigma = st.q1 * q2 * (st.mu1 - mu2) * (st.mu1 - mu2);
+      if (sigma > st.max_sigma) {  // ties keep the smallest t
+        st.max_sigma = sigma;
+        st.best = i;
+      }
     }
   }
-  return best;
+  for (int c = 0; c < count; ++c) {
+    thresholds[c] = states[c].empty ? 0 : states[c].best;
+  }
+}
+
+int otsuThreshold(const CellHistogram& histogram) {
+  int t = 0;
+  otsuThresholds(&histogram, 1, &t);
+  return t;
 }
 
 void cellHistograms(const cv::Mat& image, int grid_size, ThresholdWorkspace& ws) {
@@ -135,6 +157,8 @@ void cellThresholds(const cv::Mat& image, const ThresholdParams& params, Thresho
   const int grid = params.grid_size;
   thresholds.create(grid, grid, CV_32S);
   cellHistograms(image, grid, ws);
+  int otsu[1024];
+  otsuThresholds(ws.histograms.data(), grid * grid, otsu);
   for (int cy = 0; cy < grid; ++cy) {
     for (int cx = 0; cx < grid; ++cx) {
       const cv::Rect rect = gridCell(image.size(), grid, cx, cy);
@@ -144,7 +168,7 @@ void cellThresholds(const cv::Mat& image, const ThresholdParams& params, Thresho
         continue;
       }
       const int i_mid = image.at<std::uint8_t>(rect.y + rect.height / 2, rect.x + rect.width / 2);  // centreValue
-      t = truncatedThreshold(i_mid, otsuThreshold(ws.histograms[static_cast<size_t>(cy) * grid + cx]), params);
+      t = truncatedThreshold(i_mid, otsu[cy * grid + cx], params);
     }
   }
 }

@@ -18,6 +18,7 @@
 #include "enhanced_orb/rbrief.h"
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
+#include "kernels/suppression.h"
 
 namespace enhanced_orb {
 namespace {
@@ -81,10 +82,6 @@ void ownOrRelease(cv::Mat& m) {
   }
 }
 
-inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
-  return a > b ? a : b;
-}
-
 // The non-maximum suppression of detectCorners on one band of cells (one grid row), a whole
 // interior row at a time. b (a corner's score, 0 for other pixels) is computed with each pixel's
 // own cell threshold; a neighbour across a cell edge counts 0.
@@ -93,9 +90,14 @@ public:
   // starts[0..cells]: the first column of each cell of the band and, last, the end of the interior.
   BandSuppression(const cv::Mat& scores, const int* starts, int cells, const int* thresholds,
                   std::vector<std::uint8_t>& buffer)
-      : scores_(scores), starts_(starts), cells_(cells), thresholds_(thresholds) {
-    const int x0 = starts[0];
-    width_ = starts[cells] - x0;
+      : scores_(scores), x0_(starts[0]), cells_(cells), simd_(activeSimdLevel()) {
+    width_ = starts[cells] - x0_;
+    for (int c = 0; c <= cells; ++c) {
+      starts_[c] = starts[c] - x0_;
+    }
+    for (int c = 0; c < cells; ++c) {
+      thresholds_[c] = static_cast<std::uint8_t>(thresholds[c]);
+    }
     const size_t row = static_cast<size_t>(width_) + 72;  // a zero column each side, 64-flag reads
     buffer.assign(7 * row, 0);
     for (int k = 0; k < 3; ++k) {
@@ -107,7 +109,6 @@ public:
 
   // Appends the corners of rows [y0, y1) of the band to each cell's list.
   void run(int y0, int y1, std::vector<std::vector<cv::KeyPoint>>& cell_corners) {
-    const int x0 = starts_[0];
     clearRow(0);
     fillRow(y0, 1);
     for (int y = y0; y < y1; ++y) {
@@ -116,21 +117,8 @@ public:
       } else {
         clearRow(2);
       }
-      const std::uint8_t* __restrict here = b_[1];
-      const std::uint8_t* __restrict up = around_[0];
-      const std::uint8_t* __restrict down = around_[2];
-      std::uint8_t* __restrict keep = keep_;
-      const int width = width_;
-      for (int i = 0; i < width; ++i) {
-        keep[i] = here[i] > max8(max8(up[i], down[i]), max8(here[i - 1], here[i + 1])) ? 1 : 0;
-      }
-      // Across a cell edge the horizontal neighbours count 0: redo the edge columns.
-      for (int c = 1; c < cells_; ++c) {
-        const int right = starts_[c] - x0;  // first column of cell c
-        const int left = right - 1;         // last column of cell c - 1
-        keep_[left] = here[left] > max8(max8(up[left], down[left]), here[left - 1]) ? 1 : 0;
-        keep_[right] = here[right] > max8(max8(up[right], down[right]), here[right + 1]) ? 1 : 0;
-      }
+      const std::uint8_t* here = b_[1];
+      kernels::suppressionKeep(simd_, here, around_[0], around_[2], starts_, cells_, keep_);
       // Few flags are set: gather them 64 at a time into a bit mask and visit its set bits.
       int cell = 0;
       for (int i = 0; i < width_; i += 64) {
@@ -143,10 +131,10 @@ public:
         while (mask != 0) {
           const int j = i + __builtin_ctzll(mask);
           mask &= mask - 1;
-          while (x0 + j >= starts_[cell + 1]) {
+          while (j >= starts_[cell + 1]) {
             ++cell;
           }
-          cell_corners[cell].emplace_back(static_cast<float>(x0 + j), static_cast<float>(y), 7.0f, -1.0f,
+          cell_corners[cell].emplace_back(static_cast<float>(x0_ + j), static_cast<float>(y), 7.0f, -1.0f,
                                           static_cast<float>(here[j]));
         }
       }
@@ -163,34 +151,17 @@ private:
 
   // Slot `slot` gets row y's b and the maximum of each b's three horizontal neighbours in its cell.
   void fillRow(int y, int slot) {
-    const int x0 = starts_[0];
-    const std::uint8_t* __restrict m = scores_.ptr<std::uint8_t>(y) + x0;
-    std::uint8_t* __restrict b = b_[slot];
-    for (int c = 0; c < cells_; ++c) {
-      const std::uint8_t t = static_cast<std::uint8_t>(thresholds_[c]);
-      const int begin = starts_[c] - x0;
-      const int end = starts_[c + 1] - x0;
-      for (int i = begin; i < end; ++i) {
-        b[i] = m[i] > t ? static_cast<std::uint8_t>(m[i] - 1) : 0;
-      }
-    }
-    std::uint8_t* __restrict around = around_[slot];
-    const int width = width_;
-    for (int i = 0; i < width; ++i) {
-      around[i] = max8(max8(b[i - 1], b[i]), b[i + 1]);
-    }
-    for (int c = 1; c < cells_; ++c) {
-      const int right = starts_[c] - x0;
-      around[right - 1] = max8(b[right - 2], b[right - 1]);
-      around[right] = max8(b[right], b[right + 1]);
-    }
+    kernels::suppressionRow(simd_, scores_.ptr<std::uint8_t>(y) + x0_, starts_, thresholds_, cells_, b_[slot],
+                            around_[slot]);
   }
 
   const cv::Mat& scores_;
-  const int* starts_;
+  int x0_;
   int cells_;
-  const int* thresholds_;
+  SimdLevel simd_;
   int width_ = 0;
+  int starts_[33];
+  std::uint8_t thresholds_[32];
   std::uint8_t* b_[3];
   std::uint8_t* around_[3];
   std::uint8_t* keep_;
@@ -631,11 +602,10 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   } return_to_pool{this, ws};
 
   const OrbParams& orb = params_.orb;
+  // An empty image has one empty level: its thresholds are the grid's (c_min, or the fixed
+  // threshold), its corners none.
   std::vector<cv::Size>& sizes = ws->sizes;
-  sizes.clear();
-  if (!out.image.empty()) {
-    pyramidSizes(out.image.size(), orb.n_levels, orb.scale_factor, sizes);
-  }
+  pyramidSizes(out.image.size(), orb.n_levels, orb.scale_factor, sizes);
   const int n_levels = static_cast<int>(sizes.size());
   ws->levels.resize(std::max(ws->levels.size(), sizes.size()));
   ws->pyramid.resize(sizes.size());

@@ -84,6 +84,8 @@ TEST(Degenerate, ReusedOutputAcrossSizesAndAnEmptyFrame) {
     ASSERT_EQ(reused.keypoints.size(), fresh.keypoints.size()) << size;
     EXPECT_EQ(cv::norm(reused.descriptors, fresh.descriptors, cv::NORM_INF), 0.0) << size;
     EXPECT_EQ(reused.image.size(), size);
+    EXPECT_EQ(reused.cell_thresholds.size(), cv::Size(p.threshold.grid_size, p.threshold.grid_size)) << size;
+    EXPECT_EQ(reused.descriptors.rows, static_cast<int>(reused.keypoints.size())) << size;
   }
 }
 
@@ -92,6 +94,7 @@ TEST(Degenerate, EmptyImage) {
   EXPECT_TRUE(r.keypoints.empty());
   EXPECT_EQ(r.descriptors.rows, 0);
   EXPECT_TRUE(r.image.empty());
+  EXPECT_EQ(r.cell_thresholds.size(), cv::Size(5, 5));  // the grid's thresholds, c_min each
 }
 
 TEST(Degenerate, NonContinuousRoiInput) {

@@ -12,6 +12,7 @@
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
+#include "kernels/suppression.h"
 #include "kernels/tone_curve.h"
 #include "reference_extractor.h"
 #include "test_images.h"
@@ -162,6 +163,45 @@ TEST(Kernels, ToneCurveOfEveryInstructionSetEqualsTheScalarReference) {
         ASSERT_EQ(got8[x], expected8[x]) << toString(level) << ", n " << n << ", x " << x;
         ASSERT_EQ(got32[x], expected32[x]) << toString(level) << ", n " << n << ", x " << x;
       }
+    }
+  }
+}
+
+TEST(Kernels, SuppressionRowsOfEveryInstructionSetEqualTheScalarReference) {
+  cv::RNG rng(21);
+  for (int width : {301, 64, 17, 5}) {
+    // Cells of uneven widths, scores around their thresholds, rows padded with one zero each side.
+    std::vector<int> starts = {0};
+    while (starts.back() < width) {
+      starts.push_back(std::min(width, starts.back() + rng.uniform(2, 90)));
+    }
+    const int cells = static_cast<int>(starts.size()) - 1;
+    std::vector<std::uint8_t> thresholds(cells);
+    for (auto& t : thresholds) {
+      t = static_cast<std::uint8_t>(rng.uniform(0, 40));
+    }
+    std::vector<std::uint8_t> scores(width);
+    for (auto& m : scores) {
+      m = static_cast<std::uint8_t>(rng.uniform(0, 3) == 0 ? rng.uniform(0, 256) : rng.uniform(0, 45));
+    }
+    auto rows = [&](SimdLevel level, std::vector<std::uint8_t>& b, std::vector<std::uint8_t>& around,
+                    std::vector<std::uint8_t>& keep) {
+      b.assign(width + 2, 0);
+      around.assign(width + 2, 0);
+      keep.assign(width, 0);
+      kernels::suppressionRow(level, scores.data(), starts.data(), thresholds.data(), cells, b.data() + 1,
+                              around.data() + 1);
+      // The same row above and below: the keep kernel on its own output.
+      kernels::suppressionKeep(level, b.data() + 1, around.data() + 1, around.data() + 1, starts.data(), cells,
+                               keep.data());
+    };
+    std::vector<std::uint8_t> b0, a0, k0, b1, a1, k1;
+    rows(SimdLevel::kScalar, b0, a0, k0);
+    for (SimdLevel level : supportedSimdLevels()) {
+      rows(level, b1, a1, k1);
+      EXPECT_EQ(b1, b0) << toString(level) << ", width " << width;
+      EXPECT_EQ(a1, a0) << toString(level) << ", width " << width;
+      EXPECT_EQ(k1, k0) << toString(level) << ", width " << width;
     }
   }
 }

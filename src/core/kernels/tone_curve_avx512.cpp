@@ -1,6 +1,9 @@
 // The tone-curve kernel on 16 pixels at a time with AVX-512 gathers; the tail goes to the scalar kernel.
 #include <immintrin.h>
 
+// Intrinsics only: no inline function or template shared with other files may be instantiated
+// here (fast_score_vector.inc says why).
+
 #include "kernels/tone_curve.h"
 
 namespace enhanced_orb {
