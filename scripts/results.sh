@@ -27,8 +27,8 @@ echo "results: evaluation on $EUROC"
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_evaluate" --euroc "$EUROC" --output "$OUT" --every 19
 
 echo "results: benchmarks"
-"$ROOT/devel/lib/enhanced_orb/benchmark_extraction" --frames "$EUROC/mav0/cam0/data" --benchmark_min_time=0.5 \
-  --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
+"$ROOT/devel/lib/enhanced_orb/benchmark_extraction" --frames "$EUROC/mav0/cam0/data" --benchmark_min_time=0.2 \
+  --benchmark_repetitions=7 --benchmark_enable_random_interleaving=true \
   --benchmark_out="$OUT/benchmark.json" --benchmark_out_format=json >/dev/null
 
 echo "results: callgrind profile of the enhanced ORB at 1000 features (5 frames)"
