@@ -4,6 +4,10 @@ frame dropped when frames come as fast as it takes them, and the latency from im
 keypoints out at a fixed rate. Frames come from a bag; results go to a CSV file.
 
   pipeline_benchmark.py --bag FILE [--topic /cam0/image_raw] [--rate 20] [--output pipeline.csv]
+                        [--stereo-topic /cam1/image_raw --stereo-camera cam1]
+
+With a second camera (a second chain running under its namespace), also measures the pair rate
+and the latency when both cameras' frames come together, as a stereo driver sends them.
 """
 import argparse
 import csv
@@ -82,6 +86,60 @@ class Chain:
         return latencies, len(sent) - len(latencies)
 
 
+def stereo_throughput(chains, frame_lists, window):
+    """Pairs per second with at most `window` pairs in flight in each chain."""
+    for chain in chains:
+        with chain.lock:
+            chain.received.clear()
+    stamps = []
+    start = time.time()
+    for i, pair in enumerate(zip(*frame_lists)):
+        stamp = rospy.Time(5000 + i)
+        stamps.append(stamp)
+        for chain, frame in zip(chains, pair):
+            with chain.lock:
+                while len(stamps) - 1 - len(chain.received) >= window:
+                    if not chain.lock.wait(10.0):
+                        sys.exit("pipeline_benchmark: no keypoints within 10 s")
+            frame.header.stamp = stamp
+            chain.pub.publish(frame)
+    time.sleep(1.0)
+    arrivals = [max(chain.received.values()) for chain in chains if chain.received]
+    elapsed = (max(arrivals) - start) if arrivals else float("nan")
+    dropped = sum(len([s for s in stamps if s not in chain.received]) for chain in chains)
+    return len(stamps) / elapsed, dropped
+
+
+def stereo_latency(chains, frame_lists, rate):
+    """Stamp-to-keypoints latency [ms] of both cameras' frames, sent together at `rate` Hz."""
+    for chain in chains:
+        with chain.lock:
+            chain.received.clear()
+    sent = []
+    period = 1.0 / rate
+    next_time = time.time()
+    for pair in zip(*frame_lists):
+        now = time.time()
+        if now < next_time:
+            time.sleep(next_time - now)
+        next_time += period
+        stamp = rospy.Time.from_sec(time.time())
+        for chain, frame in zip(chains, pair):
+            frame.header.stamp = stamp
+            chain.pub.publish(frame)
+        sent.append(stamp)
+    time.sleep(1.0)
+    latencies, lost = [], 0
+    for chain in chains:
+        with chain.lock:
+            for s in sent:
+                if s in chain.received:
+                    latencies.append((chain.received[s] - s.to_sec()) * 1000.0)
+                else:
+                    lost += 1
+    return latencies, lost
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--bag", required=True)
@@ -91,6 +149,8 @@ def main():
     parser.add_argument("--window", type=int, default=4, help="frames in flight (below the nodelets' queue_size)")
     parser.add_argument("--repeat", type=int, default=3, help="passes over the bag's frames")
     parser.add_argument("--output", default="pipeline.csv")
+    parser.add_argument("--stereo-topic", default="", help="the second camera's images in the bag")
+    parser.add_argument("--stereo-camera", default="cam1", help="the second chain's namespace")
     args = parser.parse_args(rospy.myargv()[1:])
 
     frames = [msg for _, msg, _ in rosbag.Bag(args.bag).read_messages(topics=[args.topic])]
@@ -112,6 +172,26 @@ def main():
         (f"latency p99 at {args.rate:g} Hz [ms]", f"{p99:.1f}"),
         (f"dropped at {args.rate:g} Hz", lost),
     ]
+    if args.stereo_topic:
+        second = [msg for _, msg, _ in rosbag.Bag(args.bag).read_messages(topics=[args.stereo_topic])]
+        if not second:
+            sys.exit(f"pipeline_benchmark: no messages on {args.stereo_topic} in {args.bag}")
+        chains = [chain, Chain(args.stereo_camera)]
+        chains[1].wait_connected()
+        time.sleep(1.0)
+        n = min(len(frames), len(second))
+        lists = [frames[:n] * args.repeat, second[:n] * args.repeat]
+        stereo_throughput(chains, [frames[:10], second[:10]], args.window)  # warm-up
+        pairs, stereo_dropped = stereo_throughput(chains, lists, args.window)
+        stereo, stereo_lost = stereo_latency(chains, lists, args.rate)
+        s50, s99 = (np.percentile(stereo, [50, 99]) if stereo else (float("nan"),) * 2)
+        rows += [
+            ("stereo: max pairs per second without drops", f"{pairs:.1f}"),
+            ("stereo: dropped at max rate", stereo_dropped),
+            (f"stereo: latency p50 at {args.rate:g} Hz [ms]", f"{s50:.1f}"),
+            (f"stereo: latency p99 at {args.rate:g} Hz [ms]", f"{s99:.1f}"),
+            (f"stereo: dropped at {args.rate:g} Hz", stereo_lost),
+        ]
     with open(args.output, "w", newline="") as f:
         csv.writer(f).writerows([("key", "value"), *rows])
     for key, value in rows:

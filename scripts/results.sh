@@ -49,8 +49,13 @@ BAG=$(mktemp -d)/euroc.bag
 export ROS_HOME=$(mktemp -d)
 roslaunch enhanced_orb pipeline.launch >"$ROS_HOME/pipeline.log" 2>&1 &
 LAUNCH=$!
-trap 'kill -INT $LAUNCH 2>/dev/null || true; wait $LAUNCH 2>/dev/null || true; rm -rf "$(dirname "$BAG")" "$COMPARE"' EXIT
-python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv"
+# The second camera's chain in the same manager, as a stereo rig runs it.
+sleep 5
+roslaunch enhanced_orb pipeline.launch camera:=cam1 manager:=/cam0/enhanced_orb_manager >"$ROS_HOME/pipeline1.log" 2>&1 &
+LAUNCH1=$!
+trap 'kill -INT $LAUNCH $LAUNCH1 2>/dev/null || true; wait $LAUNCH $LAUNCH1 2>/dev/null || true; rm -rf "$(dirname "$BAG")" "$COMPARE"' EXIT
+python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv" \
+  --stereo-topic /cam1/image_raw --stereo-camera cam1
 
 python3 "$ROOT/scripts/results.py" "$OUT"
 python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
