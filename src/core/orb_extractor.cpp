@@ -598,7 +598,10 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   struct ReturnToPool {
     const OrbExtractor* self;
     std::unique_ptr<Workspace>& ws;
-    ~ReturnToPool() { self->release(std::move(ws)); }
+    ~ReturnToPool() {
+      ws->pyramid.clear();  // level 0 may be the caller's image: not kept alive by the pool
+      self->release(std::move(ws));
+    }
   } return_to_pool{this, ws};
 
   const OrbParams& orb = params_.orb;

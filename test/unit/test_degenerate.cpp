@@ -107,3 +107,20 @@ TEST(Degenerate, NonContinuousRoiInput) {
   ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
   EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING), 0.0);
 }
+
+TEST(Degenerate, TheExtractorKeepsNoReferenceToTheCallersImage) {
+  // Without enhancement the extraction reads the caller's image directly; once its result is gone,
+  // nothing of the extractor (its pooled workspaces) may hold on to that image.
+  cv::Mat image(240, 320, CV_8UC1);
+  cv::randu(image, 0, 256);
+  for (int threads : {1, 2}) {
+    Params p = Params::baseline();
+    p.orb.threads = threads;
+    const OrbExtractor extractor(p);
+    {
+      const Extraction r = extractor.extract(image);
+      EXPECT_EQ(r.image.data, image.data);
+    }
+    EXPECT_EQ(image.u->refcount, 1) << threads << " thread(s)";
+  }
+}
