@@ -1,6 +1,7 @@
 // The scalar FAST score: the definition in fast_score.h, written out, and the kernel dispatch.
 #include <algorithm>
 
+#include "kernels/dispatch.h"
 #include "kernels/fast_score.h"
 
 namespace enhanced_orb {
@@ -31,22 +32,8 @@ void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, 
 
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
                   int floor) {
-  switch (level) {
-#if defined(ENHANCED_ORB_X86_KERNELS)
-    case SimdLevel::kAvx512:
-      return fastScoreRowAvx512(centre, step, n, out, floor);
-    case SimdLevel::kAvx2:
-      return fastScoreRowAvx2(centre, step, n, out, floor);
-#else
-    case SimdLevel::kAvx512:
-    case SimdLevel::kAvx2:
-#endif
-    case SimdLevel::kVector128:
-      return fastScoreRowVector128(centre, step, n, out, floor);
-    case SimdLevel::kScalar:
-      break;
-  }
-  fastScoreRowScalar(centre, step, n, out, floor);
+  selectKernel(level, fastScoreRowScalar, fastScoreRowVector128, ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx2),
+               ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx512))(centre, step, n, out, floor);
 }
 
 }  // namespace kernels

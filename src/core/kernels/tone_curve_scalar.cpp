@@ -3,6 +3,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "kernels/dispatch.h"
 #include "kernels/tone_curve.h"
 
 namespace enhanced_orb {
@@ -29,21 +30,9 @@ void toneCurveRunScalar(const float* f, int n, const ToneCurveRun& run, std::uin
 }
 
 void toneCurveRun(SimdLevel level, const float* f, int n, const ToneCurveRun& run, std::uint8_t* out8, float* out32) {
-  switch (level) {
-#if defined(ENHANCED_ORB_X86_KERNELS)
-    case SimdLevel::kAvx512:
-      return toneCurveRunAvx512(f, n, run, out8, out32);
-    case SimdLevel::kAvx2:
-      return toneCurveRunAvx2(f, n, run, out8, out32);
-#else
-    case SimdLevel::kAvx512:
-    case SimdLevel::kAvx2:
-#endif
-    case SimdLevel::kVector128:
-    case SimdLevel::kScalar:
-      break;
-  }
-  toneCurveRunScalar(f, n, run, out8, out32);
+  // No 16-byte kernel: SSE2 has no gather.
+  selectKernel(level, toneCurveRunScalar, nullptr, ENHANCED_ORB_X86_KERNEL(toneCurveRunAvx2),
+               ENHANCED_ORB_X86_KERNEL(toneCurveRunAvx512))(f, n, run, out8, out32);
 }
 
 }  // namespace kernels
