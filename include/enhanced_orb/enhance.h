@@ -43,17 +43,12 @@ GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau)
 // the weighted CDF whose slope never falls below tau. The identity for an empty histogram.
 GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau);
 
-// The default mode's histograms: one per tile of a tiles x tiles grid over `f` (the filtered
-// image, CV_32F), each pixel adding sqrt(|grad f|) (3x3 Sobel) to the bin of round(f), so that
-// flat regions (sky, walls, saturated areas) stop driving the curve. Row-major, row = tile y.
-std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tiles);
-
-// Applies per-tile tone curves to `f` (CV_32F): each curve is read with linear interpolation in
-// f, and the curves of the four nearest tile centres are blended bilinearly (as CLAHE does). One
-// LUT gives a global curve. Returns CV_32F.
-cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles);
-// The same into `out`, of `type` CV_32F or CV_8U (rounded and saturated as convertTo does).
-void applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int type);
+// The default mode's histogram of `f` (the filtered image, CV_8UC1): the pixels at even x of even
+// rows each add w = sqrt(|f(x+1, y) - f(x-1, y)| + |f(x, y+1) - f(x, y-1)|) (neighbours clamped at
+// the border) to the bin of f(x, y), so that flat regions (sky, walls, saturated areas) stop
+// driving the curve. Weights are counted in exact 1/64ths (round(64 w)), so any order of summing
+// gives the same histogram.
+WeightedHistogram edgeWeightedHistogram(const cv::Mat& f);
 
 struct EnhanceResult {
   cv::Mat image;              // enhanced 8-bit gray image, same size as the input

@@ -26,7 +26,7 @@ enum class GammaMode {
 // The histogram-driven tone curve LUT of eqs 10-17.
 enum class ToneCurve {
   kGamma,     // the paper's truncated adaptive gamma, eqs 14-16 (on the plain histogram)
-  kEqualize,  // edge-weighted equalisation: each pixel counts by sqrt(|gradient|), per tile
+  kEqualize,  // edge-weighted equalisation: each pixel counts by sqrt(|gradient|), one global curve
 };
 
 // Named parameter sets.
@@ -44,15 +44,14 @@ enum class ThresholdMode {
 // Section III-A: image enhancement.
 struct EnhanceParams {
   ToneCurve tone_curve = ToneCurve::kEqualize;
-  double alpha = 0.3;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
-  double tau = 0.3;             // eq 15 (gamma: lower truncation of gamma_i; equalize: least slope), [0, 1]
+  double alpha = 0.5;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
+  double tau = 0.0;             // eq 15 (gamma: lower truncation of gamma_i; equalize: least slope), [0, 1]
   double beta = 1.0;            // eq 20: weight of the brightness mask T_mask, [0, 2]
   double sharpening = -1.0;     // eq 19: unsharp-mask degree, [-1, 5]; -1 leaves the filtered image f
-  int blur_ksize = 5;           // eq 8: Gaussian kernel size, odd, [1, 31]
+  int blur_ksize = 3;           // eq 8: Gaussian kernel size, odd, [1, 31]
   double blur_sigma = 1.0;      // eq 8: Gaussian sigma, [0.1, 10]
   double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode auto), [0, 1]
   GammaMode gamma_mode = GammaMode::kAlways;
-  int tone_tiles = 4;  // equalize: tiles per side, one curve each, interpolated, [1, 16]
 };
 
 // Section III-B: truncated adaptive threshold.

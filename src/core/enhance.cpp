@@ -8,9 +8,6 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "enhanced_orb/simd.h"
-#include "kernels/tone_curve.h"
-
 namespace enhanced_orb {
 
 cv::Mat toGray(const cv::Mat& image, PixelFormat format) {
@@ -159,182 +156,142 @@ void forEachBand(const std::vector<int>& starts, Fn fn) {
       bands);
 }
 
-// The tile row of image row y, in a tiles x tiles grid over `rows` rows.
-int tileRow(int y, int tiles, int rows) {
-  return std::min(tiles - 1, y * tiles / rows);
+// Band edges for `bands` horizontal bands of about equal height.
+void bandStarts(int rows, int bands, std::vector<int>& starts) {
+  bands = std::max(1, std::min(bands, rows));
+  starts.clear();
+  for (int k = 0; k <= bands; ++k) {
+    starts.push_back(static_cast<int>(static_cast<long long>(rows) * k / bands));
+  }
 }
 
-// Band edges for `bands` bands that each hold whole tile rows (so that each tile's histogram is
-// summed by one thread, pixel by pixel in the order of a single pass).
-void bandStarts(int rows, int tiles, int bands, std::vector<int>& starts) {
-  bands = std::max(1, std::min({bands, tiles, rows}));
-  starts.assign(1, 0);
-  for (int k = 1; k < bands; ++k) {
-    const int first_tile = k * tiles / bands;
-    int y = starts.back();
-    while (y < rows && tileRow(y, tiles, rows) < first_tile) {
-      ++y;
+// sqrt(g) in 1/64ths for every gradient g = |dx| + |dy| of two 8-bit differences.
+const std::array<std::uint32_t, 511>& edgeWeights() {
+  static const std::array<std::uint32_t, 511> table = [] {
+    std::array<std::uint32_t, 511> t{};
+    for (size_t g = 0; g < t.size(); ++g) {
+      t[g] = static_cast<std::uint32_t>(std::lround(64.0 * std::sqrt(static_cast<double>(g))));
     }
-    starts.push_back(y);
-  }
-  starts.push_back(rows);
+    return t;
+  }();
+  return table;
 }
 
-// Rows [y0, y1) of edgeWeightedHistograms: the weights sqrt(|grad f|) of those rows into `weight`
-// (whole-image buffers, the Sobel filters reading f around the band as a whole-image pass does),
-// added to the histograms of their tiles.
-void addEdgeWeights(const cv::Mat& f, int tiles, int y0, int y1, cv::Mat& gx, cv::Mat& gy, cv::Mat& weight,
-                    std::vector<WeightedHistogram>& histograms) {
-  const cv::Rect band(0, y0, f.cols, y1 - y0);
-  cv::Mat gx_band = gx(band), gy_band = gy(band), weight_band = weight(band);
-  cv::Sobel(f(band), gx_band, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
-  cv::Sobel(f(band), gy_band, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REFLECT_101);
-  cv::magnitude(gx_band, gy_band, weight_band);
-  cv::sqrt(weight_band, weight_band);
-  // Tile boundaries along x, so that each row is walked tile by tile without a per-pixel lookup.
-  int x_end[16];
-  for (int x = 0, t = 0; t < tiles; ++t) {
-    while (x < f.cols && x * tiles / f.cols == t) {
-      ++x;
+// Rows [y0, y1) of edgeWeightedHistogram, added to `counts`. Even rows are summed into two
+// histograms by alternating columns, so that neighbouring samples in one bin do not wait on each
+// other; integer sums make the split exact.
+void addEdgeWeights(const cv::Mat& f, int y0, int y1, std::array<std::uint64_t, 256>& counts) {
+  const std::array<std::uint32_t, 511>& weight = edgeWeights();
+  std::array<std::uint64_t, 256> other{};
+  const int last_x = f.cols - 1;
+  for (int y = y0 + (y0 & 1); y < y1; y += 2) {
+    const std::uint8_t* above = f.ptr<std::uint8_t>(std::max(y - 1, 0));
+    const std::uint8_t* row = f.ptr<std::uint8_t>(y);
+    const std::uint8_t* below = f.ptr<std::uint8_t>(std::min(y + 1, f.rows - 1));
+    auto add = [&](std::array<std::uint64_t, 256>& h, int x) {
+      const int dx = std::abs(row[std::min(x + 1, last_x)] - row[std::max(x - 1, 0)]);
+      const int dy = std::abs(below[x] - above[x]);
+      h[row[x]] += weight[dx + dy];
+    };
+    int x = 0;
+    for (; x + 2 <= last_x; x += 4) {
+      add(counts, x);
+      add(other, x + 2);
     }
-    x_end[t] = x;
-  }
-  // The band's tile rows are summed side by side, pixel by pixel, so that their additions (each
-  // histogram's own, in the order of a single row-major pass) overlap instead of waiting on each
-  // other when neighbouring pixels fall into the same bin.
-  int row_start[17];
-  int tile_rows = 0;
-  for (int y = y0; y < y1; ++y) {
-    if (y == y0 || tileRow(y, tiles, f.rows) != tileRow(y - 1, tiles, f.rows)) {
-      row_start[tile_rows++] = y;
+    for (; x <= last_x; x += 2) {
+      add(counts, x);
     }
   }
-  row_start[tile_rows] = y1;
-  int height = 0;
-  for (int k = 0; k < tile_rows; ++k) {
-    height = std::max(height, row_start[k + 1] - row_start[k]);
+  for (int i = 0; i < 256; ++i) {
+    counts[i] += other[i];
   }
-  auto bin = [](float value) {
-    // round(f): f >= 0 (a blur of an 8-bit image), rounded half up in double as std::lround does.
-    return std::min(255, std::max(0, static_cast<int>(static_cast<double>(value) + 0.5)));
-  };
-  for (int r = 0; r < height; ++r) {
-    const float* fr[16];
-    const float* wr[16];
-    WeightedHistogram* h[16];  // the tile row's histograms
-    int active = 0;
-    for (int k = 0; k < tile_rows; ++k) {
-      const int y = row_start[k] + r;
-      if (y < row_start[k + 1]) {
-        fr[active] = f.ptr<float>(y);
-        wr[active] = weight.ptr<float>(y);
-        h[active] = &histograms[static_cast<size_t>(tileRow(y, tiles, f.rows)) * tiles];
-        ++active;
+}
+
+// The default mode's enhancement (tone_curve equalize), in 8 bits: f by OpenCV's fixed-point
+// Gaussian, one global edge-weighted curve, and E as one table where sharpening is -1.
+EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads,
+                              EnhanceResult result) {
+  thread_local struct {
+    cv::Mat f;
+    std::vector<int> starts;
+    std::vector<std::array<std::uint64_t, 256>> counts;
+  } scratch;
+  cv::Mat& f = scratch.f;
+  f.create(gray.size(), CV_8UC1);
+  std::vector<int>& starts = scratch.starts;
+  bandStarts(gray.rows, threads, starts);
+  auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
+  // Eqs 8-9: f = I * h, by OpenCV's 8-bit (fixed-point) Gaussian in one pass: a band filtered as a
+  // view would round differently along its edges. Nothing beyond a view of a larger image is read.
+  cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
+                   cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
+  // Eqs 17-20 with the default mode's curve: E = I + sharpening (I - f) + beta (LUT(f) - f).
+  const double s = params.sharpening;
+  const double b = result.poor_quality ? params.beta : 0.0;
+  GammaLut curve{};
+  for (int i = 0; i < 256; ++i) {
+    curve[i] = static_cast<float>(i);
+  }
+  if (result.poor_quality) {
+    std::vector<std::array<std::uint64_t, 256>>& counts = scratch.counts;
+    counts.assign(starts.size() - 1, {});
+    forEachBand(starts, [&](int y0, int y1) {
+      const size_t k = static_cast<size_t>(std::lower_bound(starts.begin(), starts.end(), y0) - starts.begin());
+      addEdgeWeights(f, y0, y1, counts[k]);
+    });
+    WeightedHistogram histogram{};
+    for (const std::array<std::uint64_t, 256>& c : counts) {
+      for (int i = 0; i < 256; ++i) {
+        histogram[i] += static_cast<double>(c[i]);
       }
     }
-    for (int t = 0, x = 0; t < tiles; ++t) {
-      for (; x < x_end[t]; ++x) {
-        for (int k = 0; k < active; ++k) {
-          h[k][t][bin(fr[k][x])] += wr[k][x];
-        }
-      }
-    }
+    curve = equalizingLut(histogram, params.alpha, params.tau);
   }
-}
-
-}  // namespace
-
-std::vector<WeightedHistogram> edgeWeightedHistograms(const cv::Mat& f, int tiles) {
-  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && tiles <= 16);
-  cv::Mat gx(f.size(), CV_32F), gy(f.size(), CV_32F), weight(f.size(), CV_32F);
-  std::vector<WeightedHistogram> histograms(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
-  addEdgeWeights(f, tiles, 0, f.rows, gx, gy, weight, histograms);
-  return histograms;
-}
-
-namespace {
-
-// Rows [y0, y1) of applyTileCurves into `out` (already of f's size, CV_32F or CV_8U).
-void applyTileCurveRows(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int y0, int y1) {
-  // Tile centres at (k + 1/2) of a tile; pixels beyond the outer centres use the nearest curves.
-  auto neighbours = [tiles](int pos, int length, int& k0, int& k1, float& w1) {
-    const float g = (pos + 0.5f) * tiles / length - 0.5f;
-    k0 = std::clamp(static_cast<int>(std::floor(g)), 0, tiles - 1);
-    k1 = std::min(k0 + 1, tiles - 1);
-    w1 = std::clamp(g - static_cast<float>(k0), 0.0f, 1.0f);
-  };
-  // Each curve as value and slope per level, read at f by linear interpolation. Buffers are kept
-  // per thread and reached through plain pointers (a thread_local of a shared library costs a call
-  // per access).
-  thread_local std::vector<float> curve_buffer;
-  thread_local std::vector<int> column_buffer;
-  thread_local std::vector<float> weight_buffer;
-  curve_buffer.resize(luts.size() * 512);
-  column_buffer.resize(2 * static_cast<size_t>(f.cols));
-  weight_buffer.resize(2 * static_cast<size_t>(f.cols));
-  float* const curves = curve_buffer.data();  // tile t: values at 512 t, slopes at 512 t + 256
-  for (size_t t = 0; t < luts.size(); ++t) {
+  result.image = output;
+  result.image.create(gray.size(), CV_8UC1);
+  if (s == -1.0) {
+    // E = f + beta (LUT(f) - f): one table of f.
+    cv::Mat table(1, 256, CV_8U);
     for (int i = 0; i < 256; ++i) {
-      curves[512 * t + i] = luts[t][i];
-      curves[512 * t + 256 + i] = i < 255 ? luts[t][i + 1] - luts[t][i] : 0.0f;
+      table.at<std::uint8_t>(i) = cv::saturate_cast<std::uint8_t>(i + b * (curve[i] - i));
     }
+    forEachBand(starts, [&](int y0, int y1) {
+      cv::Mat dst = result.image(band(y0, y1));
+      cv::LUT(f(band(y0, y1)), table, dst);
+    });
+    return result;
   }
-  int* const x0 = column_buffer.data();
-  int* const x1 = x0 + f.cols;
-  float* const w_left = weight_buffer.data();
-  float* const w_right = w_left + f.cols;
-  for (int x = 0; x < f.cols; ++x) {
-    neighbours(x, f.cols, x0[x], x1[x], w_right[x]);
-    w_left[x] = 1.0f - w_right[x];
+  // E = (1 + s) I - s f + beta (LUT(f) - f), per pixel.
+  float moved[256];
+  for (int i = 0; i < 256; ++i) {
+    moved[i] = static_cast<float>(-s * i + b * (curve[i] - i));
   }
-  // Runs of columns between two tile centres share their four curves.
-  int run_start[34];
-  int runs = 0;
-  for (int x = 0; x < f.cols; ++x) {
-    if (x == 0 || x0[x] != x0[x - 1] || x1[x] != x1[x - 1]) {
-      run_start[runs++] = x;
-    }
-  }
-  run_start[runs] = f.cols;
-  const SimdLevel simd = activeSimdLevel();
-  const bool to_float = out.depth() == CV_32F;
-  for (int y = y0; y < y1; ++y) {
-    int ty0 = 0, ty1 = 0;
-    float wy = 0.0f;
-    neighbours(y, f.rows, ty0, ty1, wy);
-    const float* fr = f.ptr<float>(y);
-    for (int r = 0; r < runs; ++r) {
-      const int x = run_start[r];
-      const int end = run_start[r + 1];
-      const int tile[4] = {ty0 * tiles + x0[x], ty0 * tiles + x1[x], ty1 * tiles + x0[x], ty1 * tiles + x1[x]};
-      kernels::ToneCurveRun run{};
-      for (int k = 0; k < 4; ++k) {
-        run.value[k] = curves + 512 * tile[k];
-        run.slope[k] = curves + 512 * tile[k] + 256;
+  forEachBand(starts, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const std::uint8_t* in = gray.ptr<std::uint8_t>(y);
+      const std::uint8_t* fr = f.ptr<std::uint8_t>(y);
+      std::uint8_t* out = result.image.ptr<std::uint8_t>(y);
+      for (int x = 0; x < gray.cols; ++x) {
+        out[x] = cv::saturate_cast<std::uint8_t>(static_cast<float>(1.0 + s) * in[x] + moved[fr[x]]);
       }
-      run.w_left = w_left + x;
-      run.w_right = w_right + x;
-      run.wy_top = 1.0f - wy;
-      run.wy_bottom = wy;
-      kernels::toneCurveRun(simd, fr + x, end - x, run, to_float ? nullptr : out.ptr<std::uint8_t>(y) + x,
-                            to_float ? out.ptr<float>(y) + x : nullptr);
     }
-  }
+  });
+  return result;
 }
 
 }  // namespace
 
-void applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles, cv::Mat& out, int type) {
-  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && luts.size() == static_cast<size_t>(tiles) * tiles);
-  CV_Assert(type == CV_32F || type == CV_8U);
-  out.create(f.size(), type);
-  applyTileCurveRows(f, luts, tiles, out, 0, f.rows);
-}
-
-cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles) {
-  cv::Mat out;
-  applyTileCurves(f, luts, tiles, out, CV_32F);
-  return out;
+WeightedHistogram edgeWeightedHistogram(const cv::Mat& f) {
+  CV_Assert(f.type() == CV_8UC1);
+  std::array<std::uint64_t, 256> counts{};
+  if (!f.empty()) {
+    addEdgeWeights(f, 0, f.rows, counts);
+  }
+  WeightedHistogram histogram{};
+  for (int i = 0; i < 256; ++i) {
+    histogram[i] = static_cast<double>(counts[i]);
+  }
+  return histogram;
 }
 
 EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads) {
@@ -353,11 +310,14 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   result.lambda = imageLambda(gray, &result.mean_gray);
   result.poor_quality = isPoorQuality(result.lambda, params);
 
-  // Step 4: a bright poor image is enhanced as its negative, and turned back at the end. Only the
-  // gamma brightens one way; the equalisation treats dark and bright alike.
-  const bool gamma_curve = params.tone_curve == ToneCurve::kGamma;
+  if (params.tone_curve == ToneCurve::kEqualize) {
+    return enhanceEqualize(gray, params, output, threads, result);
+  }
+
+  // The paper's method. Step 4: a bright poor image is enhanced as its negative, and turned back
+  // at the end.
   cv::Mat input;
-  result.inverted = gamma_curve && result.poor_quality && result.mean_gray > 128.0;
+  result.inverted = result.poor_quality && result.mean_gray > 128.0;
   if (result.inverted) {
     cv::bitwise_not(gray, input);  // into a new buffer: the caller's image is never written
   } else {
@@ -367,28 +327,21 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   // Float buffers are reused from call to call on each thread: fresh ones of this size would be
   // fresh pages from the kernel, whose faults cost more than the arithmetic.
   thread_local struct {
-    cv::Mat input_f, f, e, f_rounded, curve_f, gx, gy, weight;
+    cv::Mat input_f, f, e, f_rounded, curve_f;
     std::vector<int> starts;
-    std::vector<WeightedHistogram> histograms;
-    std::vector<GammaLut> luts;
   } scratch;
   // (The lambdas below run on other threads: they must reach these buffers through references,
   // not by the thread_local's name.)
   cv::Mat& input_f = scratch.input_f;
   cv::Mat& f = scratch.f;
   cv::Mat& e = scratch.e;
-  cv::Mat& gx = scratch.gx;
-  cv::Mat& gy = scratch.gy;
-  cv::Mat& weight = scratch.weight;
   input_f.create(gray.size(), CV_32F);
   f.create(gray.size(), CV_32F);
 
   // With threads > 1 the image is cut into horizontal bands worked on side by side; a filter
   // reads the rows around its band, as a whole-image pass does, so the result is the same.
-  const bool equalize = result.poor_quality && params.tone_curve == ToneCurve::kEqualize;
-  const int tiles = std::min({params.tone_tiles, gray.cols, gray.rows});
   std::vector<int>& starts = scratch.starts;
-  bandStarts(gray.rows, equalize ? tiles : gray.rows, threads, starts);
+  bandStarts(gray.rows, threads, starts);
   auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
 
   // Eqs 8-9: f = I * h, kept in floating point.
@@ -407,30 +360,8 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   // (1 + sharpening) I - (sharpening + beta) f + beta LUT(f) in vectorised passes.
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
-  std::vector<GammaLut>& luts = scratch.luts;
-  luts.clear();
-  if (equalize) {
-    // The default mode's curves, one per tile, read between levels: a dark frame's filtered
-    // values carry more than its few integer levels.
-    for (cv::Mat* m : {&gx, &gy, &weight}) {
-      m->create(gray.size(), CV_32F);
-    }
-    std::vector<WeightedHistogram>& histograms = scratch.histograms;
-    histograms.assign(static_cast<size_t>(tiles) * tiles, WeightedHistogram{});
-    forEachBand(starts, [&](int y0, int y1) { addEdgeWeights(f, tiles, y0, y1, gx, gy, weight, histograms); });
-    for (const WeightedHistogram& h : histograms) {
-      luts.push_back(equalizingLut(h, params.alpha, params.tau));
-    }
-    if (s == -1.0 && b == 1.0) {
-      // E = 0 I - 0 f + LUT(f) = LUT(f) exactly: the curves write the 8-bit image themselves.
-      result.image = output;
-      result.image.create(gray.size(), CV_8UC1);
-      forEachBand(starts, [&](int y0, int y1) { applyTileCurveRows(f, luts, tiles, result.image, y0, y1); });
-      return result;
-    }
-  }
   cv::addWeighted(input_f, 1.0 + s, f, -(s + b), 0.0, e);
-  if (result.poor_quality && gamma_curve) {
+  if (result.poor_quality) {
     // The paper's curve reads the table at round(f).
     cv::Mat& f_rounded = scratch.f_rounded;
     f.convertTo(f_rounded, CV_8U);
@@ -444,11 +375,6 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
     GammaLut lut = truncatedGammaLut(histogram, params.alpha, params.tau);
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
-    cv::scaleAdd(curve_f, b, e, e);
-  } else if (equalize) {
-    cv::Mat& curve_f = scratch.curve_f;
-    curve_f.create(gray.size(), CV_32F);
-    forEachBand(starts, [&](int y0, int y1) { applyTileCurveRows(f, luts, tiles, curve_f, y0, y1); });
     cv::scaleAdd(curve_f, b, e, e);
   }
   result.image = output;

@@ -33,7 +33,7 @@ Params Params::paper() {
   p.enhance.beta = 0.3;
   p.enhance.sharpening = 1.0;
   p.enhance.gamma_mode = GammaMode::kAuto;
-  p.enhance.tone_tiles = 1;
+  p.enhance.blur_ksize = 5;
   p.orb.max_features = 0;
   p.orb.candidate_ratio = 0.0;
   return p;
@@ -63,7 +63,6 @@ std::vector<std::string> validate(const EnhanceParams& p) {
   }
   checkRange(out, "blur_sigma", p.blur_sigma, 0.1, 10.0);
   checkRange(out, "std_threshold", p.std_threshold, 0.0, 1.0);
-  checkRange(out, "tone_tiles", p.tone_tiles, 1, 16);
   return out;
 }
 
@@ -158,7 +157,6 @@ const std::vector<Field>& fields() {
        [](const Params& p) { return std::string(p.enhance_enabled ? "true" : "false"); }},
       named(
           "tone_curve", [](Params& p) -> ToneCurve& { return p.enhance.tone_curve; }, parseToneCurve),
-      number("tone_tiles", [](Params& p) -> int& { return p.enhance.tone_tiles; }),
       number("alpha", [](Params& p) -> double& { return p.enhance.alpha; }),
       number("tau", [](Params& p) -> double& { return p.enhance.tau; }),
       number("beta", [](Params& p) -> double& { return p.enhance.beta; }),
@@ -211,19 +209,16 @@ std::vector<std::string> inactiveParameters(const Params& p) {
   std::vector<std::string> out;
   const EnhanceParams& e = p.enhance;
   if (!p.enhance_enabled) {
-    for (const char* name : {"tone_curve", "tone_tiles", "alpha", "tau", "beta", "sharpening", "blur_ksize",
-                             "blur_sigma", "std_threshold", "gamma_mode"}) {
+    for (const char* name : {"tone_curve", "alpha", "tau", "beta", "sharpening", "blur_ksize", "blur_sigma",
+                             "std_threshold", "gamma_mode"}) {
       out.push_back(std::string(name) + ": the enhancement is off");
     }
   } else {
     if (e.gamma_mode != GammaMode::kAuto) {
       out.push_back("std_threshold: only used when gamma_mode is auto");
     }
-    if (e.tone_curve == ToneCurve::kGamma) {
-      out.push_back("tone_tiles: only used when tone_curve is equalize");
-    }
     if (e.gamma_mode == GammaMode::kNever) {
-      for (const char* name : {"tone_curve", "tone_tiles", "alpha", "tau", "beta"}) {
+      for (const char* name : {"tone_curve", "alpha", "tau", "beta"}) {
         out.push_back(std::string(name) + ": the tone curve is off (gamma_mode never)");
       }
     }

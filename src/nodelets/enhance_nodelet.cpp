@@ -39,7 +39,6 @@ private:
   static EnhanceParams toParams(const EnhanceConfig& config) {
     EnhanceParams p;
     parseToneCurve(config.tone_curve, p.tone_curve);
-    p.tone_tiles = config.tone_tiles;
     p.alpha = config.alpha;
     p.tau = config.tau;
     p.beta = config.beta;

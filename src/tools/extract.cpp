@@ -47,7 +47,7 @@ options:
 parameters (README "Parameters" gives each one's meaning, default and range):
   --max-features N  --candidate-ratio X  --n-levels N  --scale-factor X
   --threads N (threads of one extraction, default 1 so that timings compare; results are the same)
-  --tone-curve equalize|gamma  --tone-tiles N  --alpha X  --tau X  --beta X  --sharpening X
+  --tone-curve equalize|gamma  --alpha X  --tau X  --beta X  --sharpening X
   --blur-ksize N  --blur-sigma X  --gamma-mode auto|always|never  --std-threshold X
   --grid-size N  --threshold-scale X  --c-min N  --threshold-mode adaptive|fixed  --fast-threshold N
 A value must be a whole number of the parameter's type and lie in its range; when an option is

@@ -1,8 +1,8 @@
 // A straightforward implementation of the whole extraction, from OpenCV's building blocks and
-// the definitions written out: the enhancement as separate passes over float images, cv::FAST run
-// cell by cell, Otsu through cv::threshold, the spread selection on cv::KeyPoint vectors, the
-// orientation pixel by pixel, and cv::ORB::compute level by level. The library's extractor must
-// give exactly its enhanced image, keypoints, thresholds and descriptors.
+// the definitions written out: the enhancement pixel by pixel (default mode) or as separate passes
+// over float images (paper), cv::FAST run cell by cell, Otsu through cv::threshold, the spread selection on
+// cv::KeyPoint vectors, the orientation pixel by pixel, and cv::ORB::compute level by level. The library's extractor
+// must give exactly its enhanced image, keypoints, thresholds and descriptors.
 #ifndef ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
 #define ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
 
@@ -25,52 +25,46 @@
 namespace enhanced_orb {
 namespace reference {
 
-// The enhancement as separate OpenCV passes over float images, the tone curves applied pixel by
-// pixel.
-inline cv::Mat applyTileCurves(const cv::Mat& f, const std::vector<GammaLut>& luts, int tiles) {
-  CV_Assert(f.type() == CV_32FC1 && tiles >= 1 && luts.size() == static_cast<size_t>(tiles) * tiles);
-  // Each curve as value and slope per level, read at f by linear interpolation.
-  std::vector<std::array<float, 512>> curves(luts.size());
-  for (size_t t = 0; t < luts.size(); ++t) {
-    for (int i = 0; i < 256; ++i) {
-      curves[t][2 * i] = luts[t][i];
-      curves[t][2 * i + 1] = i < 255 ? luts[t][i + 1] - luts[t][i] : 0.0f;
+// The default mode's enhancement written out: OpenCV's 8-bit Gaussian, the edge-weighted
+// histogram summed sample by sample, E computed pixel by pixel.
+inline EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, EnhanceResult result) {
+  cv::Mat f;
+  cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
+                   cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
+  GammaLut curve{};
+  for (int i = 0; i < 256; ++i) {
+    curve[i] = static_cast<float>(i);
+  }
+  if (result.poor_quality) {
+    WeightedHistogram histogram{};
+    auto at = [&f](int x, int y) {
+      return static_cast<int>(f.at<std::uint8_t>(std::clamp(y, 0, f.rows - 1), std::clamp(x, 0, f.cols - 1)));
+    };
+    for (int y = 0; y < f.rows; y += 2) {
+      for (int x = 0; x < f.cols; x += 2) {
+        const int g = std::abs(at(x + 1, y) - at(x - 1, y)) + std::abs(at(x, y + 1) - at(x, y - 1));
+        histogram[at(x, y)] += std::round(64.0 * std::sqrt(static_cast<double>(g)));
+      }
+    }
+    curve = equalizingLut(histogram, params.alpha, params.tau);
+  }
+  const double s = params.sharpening;
+  const double b = result.poor_quality ? params.beta : 0.0;
+  result.image.create(gray.size(), CV_8UC1);
+  for (int y = 0; y < gray.rows; ++y) {
+    for (int x = 0; x < gray.cols; ++x) {
+      const int v = f.at<std::uint8_t>(y, x);
+      const int i = gray.at<std::uint8_t>(y, x);
+      std::uint8_t& out = result.image.at<std::uint8_t>(y, x);
+      if (s == -1.0) {
+        out = cv::saturate_cast<std::uint8_t>(v + b * (curve[v] - v));  // f + beta (LUT(f) - f)
+      } else {
+        const float moved = static_cast<float>(-s * v + b * (curve[v] - v));
+        out = cv::saturate_cast<std::uint8_t>(static_cast<float>(1.0 + s) * i + moved);
+      }
     }
   }
-  // Tile centres at (k + 1/2) of a tile; pixels beyond the outer centres use the nearest curves.
-  auto neighbours = [tiles](int pos, int length, int& k0, int& k1, float& w1) {
-    const float g = (pos + 0.5f) * tiles / length - 0.5f;
-    k0 = std::clamp(static_cast<int>(std::floor(g)), 0, tiles - 1);
-    k1 = std::min(k0 + 1, tiles - 1);
-    w1 = std::clamp(g - static_cast<float>(k0), 0.0f, 1.0f);
-  };
-  std::vector<int> x0(f.cols), x1(f.cols);
-  std::vector<float> wx(f.cols);
-  for (int x = 0; x < f.cols; ++x) {
-    neighbours(x, f.cols, x0[x], x1[x], wx[x]);
-  }
-  cv::Mat out(f.size(), CV_32F);
-  for (int y = 0; y < f.rows; ++y) {
-    int y0 = 0, y1 = 0;
-    float wy = 0.0f;
-    neighbours(y, f.rows, y0, y1, wy);
-    const float* fr = f.ptr<float>(y);
-    float* o = out.ptr<float>(y);
-    const std::array<float, 512>* top_row = &curves[static_cast<size_t>(y0) * tiles];
-    const std::array<float, 512>* bottom_row = &curves[static_cast<size_t>(y1) * tiles];
-    for (int x = 0; x < f.cols; ++x) {
-      // Each curve read at f by linear interpolation between levels: the level and the fraction
-      // are the same for the four curves.
-      const float c = std::clamp(fr[x], 0.0f, 255.0f);
-      const int i = std::min(254, static_cast<int>(c));
-      const float frac = c - static_cast<float>(i);
-      auto read = [i, frac](const std::array<float, 512>& curve) { return curve[2 * i] + frac * curve[2 * i + 1]; };
-      const float top = (1.0f - wx[x]) * read(top_row[x0[x]]) + wx[x] * read(top_row[x1[x]]);
-      const float bottom = (1.0f - wx[x]) * read(bottom_row[x0[x]]) + wx[x] * read(bottom_row[x1[x]]);
-      o[x] = (1.0f - wy) * top + wy * bottom;
-    }
-  }
-  return out;
+  return result;
 }
 
 inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
@@ -90,19 +84,20 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
   result.lambda = imageLambda(gray, &result.mean_gray);
   result.poor_quality = isPoorQuality(result.lambda, params);
 
-  // Step 4: a bright poor image is enhanced as its negative, and turned back at the end. Only the
-  // gamma brightens one way; the equalisation treats dark and bright alike.
-  const bool gamma_curve = params.tone_curve == ToneCurve::kGamma;
+  if (params.tone_curve == ToneCurve::kEqualize) {
+    return enhanceEqualize(gray, params, result);
+  }
+
+  // The paper's method. Step 4: a bright poor image is enhanced as its negative, and turned back
+  // at the end.
   cv::Mat input;
-  result.inverted = gamma_curve && result.poor_quality && result.mean_gray > 128.0;
+  result.inverted = result.poor_quality && result.mean_gray > 128.0;
   if (result.inverted) {
-    cv::bitwise_not(gray, input);  // into a new buffer: the caller's image is never written
+    cv::bitwise_not(gray, input);
   } else {
     input = gray;
   }
 
-  // Float buffers are reused from call to call on each thread: fresh ones of this size would be
-  // fresh pages from the kernel, whose faults cost more than the arithmetic.
   struct {
     cv::Mat input_f, f, e, f_rounded, curve_f;
   } scratch;
@@ -121,7 +116,7 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
   cv::addWeighted(input_f, 1.0 + s, f, -(s + b), 0.0, e);
-  if (result.poor_quality && gamma_curve) {
+  if (result.poor_quality) {
     // The paper's curve reads the table at round(f).
     cv::Mat& f_rounded = scratch.f_rounded;
     f.convertTo(f_rounded, CV_8U);
@@ -136,17 +131,6 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
     cv::scaleAdd(curve_f, b, e, e);
-  } else if (result.poor_quality) {
-    // The default mode's curve reads the tables between levels: a dark frame's filtered values
-    // carry more than its few integer levels.
-    const int tiles = std::min({params.tone_tiles, f.cols, f.rows});
-    const std::vector<WeightedHistogram> histograms = edgeWeightedHistograms(f, tiles);
-    std::vector<GammaLut> luts;
-    luts.reserve(histograms.size());
-    for (const WeightedHistogram& h : histograms) {
-      luts.push_back(equalizingLut(h, params.alpha, params.tau));
-    }
-    cv::scaleAdd(reference::applyTileCurves(f, luts, tiles), b, e, e);
   }
   result.image = output;
   e.convertTo(result.image, CV_8U);  // round and saturate; keeps `output`'s buffer when it fits

@@ -39,7 +39,6 @@ TEST(ConfigAgreement, EnhanceDefaultsAreTheDefaultMode) {
   const EnhanceConfig c = EnhanceConfig::__getDefault__();
   const EnhanceParams e;
   EXPECT_EQ(c.tone_curve, toString(e.tone_curve));
-  EXPECT_EQ(c.tone_tiles, e.tone_tiles);
   EXPECT_DOUBLE_EQ(c.alpha, e.alpha);
   EXPECT_DOUBLE_EQ(c.tau, e.tau);
   EXPECT_DOUBLE_EQ(c.beta, e.beta);
@@ -68,7 +67,6 @@ TEST(ConfigAgreement, ExtractDefaultsAreTheDefaultMode) {
 
 TEST(ConfigAgreement, RangesAreTheLibrarys) {
   const EnhanceConfig lo = EnhanceConfig::__getMin__(), hi = EnhanceConfig::__getMax__();
-  expectSameRange("tone_tiles", lo.tone_tiles, hi.tone_tiles);
   expectSameRange("alpha", lo.alpha, hi.alpha);
   expectSameRange("tau", lo.tau, hi.tau);
   expectSameRange("beta", lo.beta, hi.beta);

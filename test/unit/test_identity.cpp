@@ -13,7 +13,6 @@
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
 #include "kernels/suppression.h"
-#include "kernels/tone_curve.h"
 #include "reference_extractor.h"
 #include "test_images.h"
 
@@ -119,54 +118,6 @@ TEST(Kernels, FastScoreOfEveryInstructionSetEqualsTheScalarReference) {
   }
 }
 
-TEST(Kernels, ToneCurveOfEveryInstructionSetEqualsTheScalarReference) {
-  cv::RNG rng(9);
-  std::vector<float> curves(8 * 256), weights(2 * 301), f(301);
-  for (int k = 0; k < 4; ++k) {
-    float value = rng.uniform(0.0f, 20.0f);
-    for (int i = 0; i < 256; ++i) {
-      curves[512 * k + i] = value;
-      value += rng.uniform(0.0f, 2.0f);
-    }
-    for (int i = 0; i < 256; ++i) {
-      curves[512 * k + 256 + i] = i < 255 ? curves[512 * k + i + 1] - curves[512 * k + i] : 0.0f;
-    }
-  }
-  for (int x = 0; x < 301; ++x) {
-    weights[301 + x] = rng.uniform(0.0f, 1.0f);
-    weights[x] = 1.0f - weights[301 + x];
-    // Levels across the range, the clamped ends, exact integers and values just below them.
-    f[x] = x % 7 == 0    ? static_cast<float>(x % 256)
-           : x % 11 == 0 ? std::nextafter(255.0f, 0.0f)
-           : x % 13 == 0 ? -3.0f
-           : x % 17 == 0 ? 300.0f
-                         : rng.uniform(0.0f, 255.0f);
-  }
-  kernels::ToneCurveRun run{};
-  for (int k = 0; k < 4; ++k) {
-    run.value[k] = curves.data() + 512 * k;
-    run.slope[k] = curves.data() + 512 * k + 256;
-  }
-  run.w_left = weights.data();
-  run.w_right = weights.data() + 301;
-  run.wy_top = 0.625f;
-  run.wy_bottom = 0.375f;
-  std::vector<std::uint8_t> expected8(301), got8(301);
-  std::vector<float> expected32(301), got32(301);
-  kernels::toneCurveRunScalar(f.data(), 301, run, expected8.data(), nullptr);
-  kernels::toneCurveRunScalar(f.data(), 301, run, nullptr, expected32.data());
-  for (SimdLevel level : supportedSimdLevels()) {
-    for (int n : {301, 64, 17, 3}) {
-      kernels::toneCurveRun(level, f.data(), n, run, got8.data(), nullptr);
-      kernels::toneCurveRun(level, f.data(), n, run, nullptr, got32.data());
-      for (int x = 0; x < n; ++x) {
-        ASSERT_EQ(got8[x], expected8[x]) << toString(level) << ", n " << n << ", x " << x;
-        ASSERT_EQ(got32[x], expected32[x]) << toString(level) << ", n " << n << ", x " << x;
-      }
-    }
-  }
-}
-
 TEST(Kernels, SuppressionRowsOfEveryInstructionSetEqualTheScalarReference) {
   cv::RNG rng(21);
   for (int width : {301, 64, 17, 5}) {
@@ -253,8 +204,12 @@ TEST(Enhance, IdenticalToTheReferenceInEveryModeAndSetting) {
   for (auto [name, change] : std::vector<std::pair<std::string, void (*)(EnhanceParams&)>>{
            {"beta 0.5", [](EnhanceParams& e) { e.beta = 0.5; }},
            {"sharpening 1", [](EnhanceParams& e) { e.sharpening = 1.0; }},
-           {"one tile", [](EnhanceParams& e) { e.tone_tiles = 1; }},
-           {"7 tiles", [](EnhanceParams& e) { e.tone_tiles = 7; }},
+           {"blur 5x5, alpha 1, tau 0.4",
+            [](EnhanceParams& e) {
+              e.blur_ksize = 5;
+              e.alpha = 1.0;
+              e.tau = 0.4;
+            }},
            {"never", [](EnhanceParams& e) { e.gamma_mode = GammaMode::kNever; }}}) {
     EnhanceParams e;
     change(e);

@@ -357,7 +357,7 @@ TEST(Extractor, DefaultModeParametersEachChangeTheOutput) {
   EXPECT_TRUE(differs("tau", "0.8"));
   EXPECT_TRUE(differs("beta", "0.5"));
   EXPECT_TRUE(differs("sharpening", "0.5"));
-  EXPECT_TRUE(differs("tone_tiles", "1"));
+  EXPECT_TRUE(differs("blur_ksize", "5"));
   EXPECT_TRUE(differs("c_min", "80"));  // at a budget: once fewer corners than the candidates pass it
   EXPECT_TRUE(differs("threshold_scale", "1.5"));
   EXPECT_TRUE(differs("candidate_ratio", "0"));
