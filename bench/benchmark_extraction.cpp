@@ -159,7 +159,7 @@ void BM_Enhance(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data);
   }
   static const char* labels[] = {"paper, gamma auto (EuRoC: not poor)", "paper, gamma always",
-                                 "default mode (tiled equalisation)"};
+                                 "default mode (global edge-weighted curve, 8 bits)"};
   state.SetLabel(std::string(labels[state.range(0)]) + ", " + std::to_string(threads) + " thread(s)");
 }
 
@@ -332,7 +332,7 @@ BENCHMARK(BM_GrayFromBGR)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Enhance)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Thresholds)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Fast)->ArgsProduct({{0, 1}, {1, 2, 3}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Fast)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Orientation)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Descriptors)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Frame)

@@ -244,7 +244,7 @@ def main():
                 counters[name] = bm
         def frame(method, budget, threads, simd):
             return times.get(f"BM_Frame/method:{method}/budget:{budget}/threads:{threads}/simd:{simd}")
-        simd_names = {1: "sse2", 2: "avx2", 3: "avx512"}
+        simd_names = {1: "sse2", 2: "avx2"}
         best = max((int(n.rsplit(":", 1)[1]) for n in times if n.startswith("BM_Frame/") and "/method:3/" in n),
                    default=3)
         w("| budget | cv::ORB ms | default 1 thread | default 2 threads | baseline 1 thread | baseline 2 threads "

@@ -27,7 +27,7 @@ if cmake -S "$ROOT" -B "$PORTABLE" -DENHANCED_ORB_PORTABLE=ON -DCATKIN_DEVEL_PRE
 else
   portable_failed "build"
 fi
-# The kernels built for AVX2 / AVX-512 must not define a function the linker could pick for the
+# The kernels built for AVX2 must not define a function the linker could pick for the
 # whole library (a weak symbol: an inline function or template instance), which a CPU without
 # that instruction set would then run.
 WEAK_XML="$ROOT/build/test_results/enhanced_orb/kernels-weak-symbols.xml"

@@ -8,22 +8,23 @@
 namespace enhanced_orb {
 
 // kScalar is the reference every other level is tested against; kVector128 is SSE2 on x86-64 (and
-// the 16-byte path elsewhere), kAvx2 and kAvx512 are x86-64 only.
-enum class SimdLevel { kScalar = 0, kVector128 = 1, kAvx2 = 2, kAvx512 = 3 };
+// the 16-byte path elsewhere), kAvx2 x86-64 only. There is no AVX-512 level: its 64-byte kernels
+// were measured slower than the AVX2 ones on an AVX-512 machine (docs/RESULTS.md, "Speed").
+enum class SimdLevel { kScalar = 0, kVector128 = 1, kAvx2 = 2 };
 
 // The levels this build has kernels for and this CPU can run, lowest first. A build configured
 // with -DENHANCED_ORB_PORTABLE=ON has kScalar and kVector128 only.
 std::vector<SimdLevel> supportedSimdLevels();
 
 // The level in use: the best supported one, unless lowered by setSimdLevel() or by the
-// environment variable ENHANCED_ORB_SIMD (scalar, sse2, avx2, avx512) when the process started.
+// environment variable ENHANCED_ORB_SIMD (scalar, sse2, avx2) when the process started.
 SimdLevel activeSimdLevel();
 
 // Uses `level`, or the best supported level below it. Returns the level now in use. Meant for
 // tests and benchmarks: it is process-wide, and results are identical at every level.
 SimdLevel setSimdLevel(SimdLevel level);
 
-const char* toString(SimdLevel level);  // "scalar", "sse2", "avx2", "avx512"
+const char* toString(SimdLevel level);  // "scalar", "sse2", "avx2"
 bool parseSimdLevel(const std::string& name, SimdLevel& out);
 
 }  // namespace enhanced_orb

@@ -15,11 +15,8 @@ bool cpuRuns(SimdLevel level) {
 #if defined(ENHANCED_ORB_X86_KERNELS)
     case SimdLevel::kAvx2:
       return __builtin_cpu_supports("avx2");
-    case SimdLevel::kAvx512:
-      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw");
 #else
     case SimdLevel::kAvx2:
-    case SimdLevel::kAvx512:
       return false;
 #endif
   }
@@ -45,7 +42,7 @@ std::atomic<SimdLevel>& current() {
 
 std::vector<SimdLevel> supportedSimdLevels() {
   std::vector<SimdLevel> levels;
-  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kVector128, SimdLevel::kAvx2, SimdLevel::kAvx512}) {
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kVector128, SimdLevel::kAvx2}) {
     if (cpuRuns(level)) {
       levels.push_back(level);
     }
@@ -76,14 +73,12 @@ const char* toString(SimdLevel level) {
       return "sse2";
     case SimdLevel::kAvx2:
       return "avx2";
-    case SimdLevel::kAvx512:
-      return "avx512";
   }
   return "?";
 }
 
 bool parseSimdLevel(const std::string& name, SimdLevel& out) {
-  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kVector128, SimdLevel::kAvx2, SimdLevel::kAvx512}) {
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kVector128, SimdLevel::kAvx2}) {
     if (name == toString(level)) {
       out = level;
       return true;

@@ -22,8 +22,8 @@ struct NonDeduced {
 // The kernels of each level, scalar first; a missing one (nullptr) falls back to the next below.
 template <typename Kernel>
 Kernel selectKernel(SimdLevel level, Kernel scalar, typename NonDeduced<Kernel>::type vector128,
-                    typename NonDeduced<Kernel>::type avx2, typename NonDeduced<Kernel>::type avx512) {
-  const Kernel by_level[] = {scalar, vector128, avx2, avx512};
+                    typename NonDeduced<Kernel>::type avx2) {
+  const Kernel by_level[] = {scalar, vector128, avx2};
   for (int l = static_cast<int>(level); l > 0; --l) {
     if (by_level[l]) {
       return by_level[l];

@@ -27,7 +27,6 @@ constexpr int kFastCircle[16][2] = {{0, 3},  {1, 3},   {2, 2},   {3, 1},   {3, 0
 void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
 void fastScoreRowVector128(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
 void fastScoreRowAvx2(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
-void fastScoreRowAvx512(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
 
 // The kernel of `level` (or the best one below it that this build has).
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,

@@ -32,8 +32,8 @@ void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, 
 
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
                   int floor) {
-  selectKernel(level, fastScoreRowScalar, fastScoreRowVector128, ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx2),
-               ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx512))(centre, step, n, out, floor);
+  selectKernel(level, fastScoreRowScalar, fastScoreRowVector128, ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx2))(
+      centre, step, n, out, floor);
 }
 
 }  // namespace kernels

@@ -28,11 +28,9 @@ namespace kernels {
 void suppressionRowScalar(ENHANCED_ORB_SUPPRESSION_ROW_ARGS);
 void suppressionRowVector128(ENHANCED_ORB_SUPPRESSION_ROW_ARGS);
 void suppressionRowAvx2(ENHANCED_ORB_SUPPRESSION_ROW_ARGS);
-void suppressionRowAvx512(ENHANCED_ORB_SUPPRESSION_ROW_ARGS);
 void suppressionKeepScalar(ENHANCED_ORB_SUPPRESSION_KEEP_ARGS);
 void suppressionKeepVector128(ENHANCED_ORB_SUPPRESSION_KEEP_ARGS);
 void suppressionKeepAvx2(ENHANCED_ORB_SUPPRESSION_KEEP_ARGS);
-void suppressionKeepAvx512(ENHANCED_ORB_SUPPRESSION_KEEP_ARGS);
 
 // The kernels of `level` (or the best ones below it that this build has).
 void suppressionRow(SimdLevel level, ENHANCED_ORB_SUPPRESSION_ROW_ARGS);

@@ -10,13 +10,13 @@ namespace enhanced_orb {
 namespace kernels {
 
 void suppressionRow(SimdLevel level, ENHANCED_ORB_SUPPRESSION_ROW_ARGS) {
-  selectKernel(level, suppressionRowScalar, suppressionRowVector128, ENHANCED_ORB_X86_KERNEL(suppressionRowAvx2),
-               ENHANCED_ORB_X86_KERNEL(suppressionRowAvx512))(scores, starts, thresholds, cells, b, around);
+  selectKernel(level, suppressionRowScalar, suppressionRowVector128, ENHANCED_ORB_X86_KERNEL(suppressionRowAvx2))(
+      scores, starts, thresholds, cells, b, around);
 }
 
 void suppressionKeep(SimdLevel level, ENHANCED_ORB_SUPPRESSION_KEEP_ARGS) {
-  selectKernel(level, suppressionKeepScalar, suppressionKeepVector128, ENHANCED_ORB_X86_KERNEL(suppressionKeepAvx2),
-               ENHANCED_ORB_X86_KERNEL(suppressionKeepAvx512))(here, up, down, starts, cells, keep);
+  selectKernel(level, suppressionKeepScalar, suppressionKeepVector128, ENHANCED_ORB_X86_KERNEL(suppressionKeepAvx2))(
+      here, up, down, starts, cells, keep);
 }
 
 }  // namespace kernels
