@@ -75,29 +75,25 @@ python3 scripts/compare_report.py /tmp/compare docs/RESULTS.md
 ```
 """
 
-LOSSES = """Where it loses, and why as far as measured:
-- **Webcams** (light changing inside the scene: shadows, lamps, seasons). At 1000 features the
-  same detector and selection without any enhancement (`--methods default --set enhance=false`)
-  keep about 158 correct matches per pair, with the blur but no tone curve
-  (`--set gamma_mode=never`) about 155, against about 133 with the curve; ranking by Harris score
-  without spreading (an experiment, not in the code) reached 176, cv::ORB's level. Every per-frame
-  tone adaptation tried lost there (CLAHE+cv::ORB too): the two images of a pair get different
-  curves. The curve is what wins every exposure group (about 674 against 535 without it at
-  80-170), and switching it on only for badly exposed frames (tried with thresholds on the
-  edge-weighted median) processed the two images of an exposure pair differently and lost 15 % on
-  the exposure sets, so the default keeps one setting for every frame.
-- **Pure gamma changes** of EuRoC frames: CLAHE+cv::ORB (`gamma_0.5`) and the baseline (`gamma_2`)
-  keep more; a tone curve computed per frame does not undo a gamma exactly.
-- **Low light and noise at 2000 features**: with both frames of a pair degraded, CLAHE+cv::ORB
-  keeps more (frames +1 under `lowlight`: about 1109 against 971; `night`: 863 against 612; the
-  stereo pairs likewise), and cv::ORB more on copies with gain or noise. At 1000 the default mode
-  leads those tests; past that its spread selection reaches corners that noise makes unstable,
-  while cv::ORB ranks without spreading.
-- **Targets darker than mean gray 40** gain 1.8-1.9x over the best other method, short of 2x;
-  a stronger equalisation (`--set alpha=1.0`) passes 2x there but loses on noisy frames.
+LOSSES = """Where it loses, and why as far as measured (lighting numbers at 1000 features, per pair):
+- **Webcams** (light changing inside the scene: shadows, lamps, seasons): about 129 correct
+  matches against cv::ORB's 178. The same detector and selection without any enhancement
+  (`--methods default --set enhance=false`) keep about 158, with the blur but no tone curve
+  (`--set gamma_mode=never`) 158, and ranking by FAST score alone on the raw image
+  (`--set enhance=false --set candidate_ratio=1`) 184, above cv::ORB, but that loses the exposure
+  groups (1.34x instead of 2x below mean gray 40; 0.91x above 170). Every tone curve tried loses on
+  the webcams: half strength (`--set beta=0.5`: 144, and 1.9x below 40) and, in experiments not
+  kept in the code, the package's earlier 4x4 tiled curves (133), a fixed logarithmic curve, the
+  same for every frame (124-140), a gamma that brings the edge-weighted median to mid-gray (139),
+  a curve whose strength follows the frame's exposure (at most 142, and 0.82-0.86x on the darkened
+  and gamma-changed EuRoC copies); ranking by Harris score instead of FAST score lost everywhere
+  (webcams 118-125). The curve is what wins every exposure group, so the default keeps it, one
+  setting for every frame, and loses here.
+- **At 500 and 2000 features** the tables above say where it falls behind; at 2000, with both
+  frames of a pair under `night`, its spread selection reaches corners that noise makes unstable,
+  while cv::ORB and CLAHE+cv::ORB rank without spreading.
 - **Pose AUC** is noisy on this excerpt (about 25 stereo pairs of a static scene, 11 cm baseline;
-  the translation direction dominates the error): with no degradation the paper preset has the
-  best AUC with fewer correct matches. Read it beside the correct-match counts.
+  the translation direction dominates the error): read it beside the correct-match counts.
 - The EuRoC excerpt's camera is static: EuRoC pairs test light and noise, not viewpoint change.
 """
 

@@ -307,15 +307,16 @@ def main():
             w("```\n" + profile + "\n```")
         w("\n**Where the time goes.** The extraction itself (baseline column) is cheaper than cv::ORB's: "
           "FAST from one vectorised score map per level, the suppression on whole rows, rBRIEF written in "
-          "place, 16-bit moments for the orientation, packed-key selection. What keeps the default mode above "
-          "cv::ORB on one thread is its enhancement (`BM_Enhance/2/1`): a float 5x5 blur, two Sobel passes, "
-          "a gradient magnitude and square root for the edge weights, sixteen weighted histograms summed in "
-          "double precision in pixel order, and four curves read and blended per pixel; every step is kept "
-          "bit for bit as the equal-budget evaluation measured it (the identity tests compare it with a "
-          "reference written as separate OpenCV passes), which rules out reordering the sums or contracting "
-          "the products. Its second largest cost is not its own: `cv::resize` for the pyramid and OpenCV's "
-          "7x7 smoothing of every level, which cv::ORB pays too and which must stay OpenCV's for the "
-          "descriptors to be cv::ORB's bit for bit.\n")
+          "place, 16-bit moments for the orientation, packed-key selection. The default mode adds its "
+          "enhancement (`BM_Enhance/2/1`: an 8-bit 3x3 Gaussian, one edge-weighted histogram of every "
+          "second pixel of every second row, one table), the per-cell Otsu thresholds of every level "
+          "(`BM_Thresholds`: a histogram pass and, per cell, eqs 24-32 in cv::threshold's floating-point "
+          "steps, kept bit for bit) and the FAST work of its lower thresholds (`BM_Fast`: a vector is "
+          "skipped only when none of its pixels can pass its level's lowest threshold). About half of a "
+          "frame is not the project's own: `cv::resize` for the pyramid and OpenCV's 7x7 smoothing of "
+          "every level, which cv::ORB pays too and which must stay OpenCV's for the descriptors to be "
+          "cv::ORB's bit for bit. There are no AVX-512 kernels: the 64-byte FAST score and suppression "
+          "were slower here than the AVX2 ones (a 64-pixel vector is skipped less often).\n")
     else:
         w("(benchmark.json missing: run scripts/results.sh)\n")
 

@@ -5,6 +5,8 @@
 #
 #   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR]]
 #   defaults ../shared/data/euroc/V1_01_easy_micro and ../shared/data/lighting
+# With COMPARE_DIR set, the comparison's CSV files are kept there (scripts/compare_report.py
+# COMPARE_DIR docs/RESULTS.md then rewrites its section without running it again).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 EUROC=$(realpath "${1:-$ROOT/../shared/data/euroc/V1_01_easy_micro}")
@@ -20,7 +22,14 @@ mkdir -p "$OUT"
 start=$(date +%s)
 
 echo "results: equal budgets on $LIGHTING and $EUROC"
-COMPARE=$(mktemp -d)
+if [ -n "${COMPARE_DIR:-}" ]; then
+  mkdir -p "$COMPARE_DIR"
+  COMPARE=$(realpath "$COMPARE_DIR")
+  KEEP_COMPARE=true
+else
+  COMPARE=$(mktemp -d)
+  KEEP_COMPARE=false
+fi
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --lighting "$LIGHTING" --euroc "$EUROC" --output "$COMPARE"
 
 echo "results: evaluation on $EUROC"
@@ -53,11 +62,10 @@ LAUNCH=$!
 sleep 5
 roslaunch enhanced_orb pipeline.launch camera:=cam1 manager:=/cam0/enhanced_orb_manager >"$ROS_HOME/pipeline1.log" 2>&1 &
 LAUNCH1=$!
-trap 'kill -INT $LAUNCH $LAUNCH1 2>/dev/null || true; wait $LAUNCH $LAUNCH1 2>/dev/null || true; rm -rf "$(dirname "$BAG")" "$COMPARE"' EXIT
+trap 'kill -INT $LAUNCH $LAUNCH1 2>/dev/null || true; wait $LAUNCH $LAUNCH1 2>/dev/null || true; rm -rf "$(dirname "$BAG")"; [ "$KEEP_COMPARE" = true ] || rm -rf "$COMPARE"' EXIT
 python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv" \
   --stereo-topic /cam1/image_raw --stereo-camera cam1
 
 python3 "$ROOT/scripts/results.py" "$OUT"
 python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
-rm -rf "$COMPARE"
 echo "results: done in $(( $(date +%s) - start )) s"
