@@ -312,7 +312,7 @@ def main():
           "second pixel of every second row, one table), the per-cell Otsu thresholds of every level "
           "(`BM_Thresholds`: a histogram pass and, per cell, eqs 24-32 in cv::threshold's floating-point "
           "steps, kept bit for bit) and the FAST work of its lower thresholds (`BM_Fast`: a vector is "
-          "skipped only when none of its pixels can pass its level's lowest threshold). About half of a "
+          "skipped only when none of its pixels can pass its own cell's threshold). About half of a "
           "frame is not the project's own: `cv::resize` for the pyramid and OpenCV's 7x7 smoothing of "
           "every level, which cv::ORB pays too and which must stay OpenCV's for the descriptors to be "
           "cv::ORB's bit for bit. There are no AVX-512 kernels: the 64-byte FAST score and suppression "

@@ -58,6 +58,7 @@ std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double sca
 // What detectCorners() needs from call to call.
 struct CornerWorkspace {
   cv::Mat scores;                                     // FAST score of every interior pixel
+  std::vector<std::uint8_t> floors;                   // a row's cell thresholds, pixel by pixel
   std::vector<std::uint8_t> rows;                     // the suppression's row buffers
   std::vector<std::vector<cv::KeyPoint>> cell_lists;  // one grid row's corners, cell by cell
 };

@@ -191,19 +191,27 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
     return;
   }
   const int grid = thresholds.rows;
-  // cv::FAST clamps its threshold to [0, 255]; no pixel scoring at or below the smallest one of
-  // the level can be a corner or weigh in a suppression, so the kernel may skip those.
-  int lowest = 255;
-  for (int i = 0; i < grid * grid; ++i) {
-    lowest = std::min(lowest, std::clamp(thresholds.at<int>(i), 0, 255));
-  }
-
   // One score per interior pixel, in a map of the level's size (only the interior is written).
+  // cv::FAST clamps its threshold to [0, 255]; a pixel scoring at or below its cell's threshold
+  // can neither be a corner nor weigh in a suppression (which counts neighbours of the same cell
+  // only), so the kernel may write 0 for it, and skip a vector of such pixels.
   ws.scores.create(level.size(), CV_8UC1);
+  ws.floors.resize(static_cast<size_t>(interior.width));
   const SimdLevel simd = activeSimdLevel();
-  for (int y = interior.y; y < interior.br().y; ++y) {
-    kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
-                          interior.width, ws.scores.ptr<std::uint8_t>(y) + interior.x, lowest);
+  for (int cy = 0; cy < grid; ++cy) {
+    cv::Rect rows;
+    for (int cx = 0; cx < grid; ++cx) {
+      const cv::Rect cell = gridCell(level.size(), grid, cx, cy) & interior;
+      if (!cell.empty()) {
+        std::fill(ws.floors.begin() + (cell.x - interior.x), ws.floors.begin() + (cell.br().x - interior.x),
+                  static_cast<std::uint8_t>(std::clamp(thresholds.at<int>(cy, cx), 0, 255)));
+        rows = cell;
+      }
+    }
+    for (int y = rows.y; y < rows.br().y; ++y) {
+      kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
+                            interior.width, ws.scores.ptr<std::uint8_t>(y) + interior.x, ws.floors.data());
+    }
   }
 
   // cv::FAST run on each cell's window (the cell widened by 3, where its circle reads) keeps a

@@ -95,11 +95,16 @@ TEST(Kernels, FastScoreOfEveryInstructionSetEqualsTheScalarReference) {
     images.push_back(frame);
   }
   for (const cv::Mat& image : images) {
-    for (int floor : {0, 6, 19, 60, 255}) {
+    // One floor for the row, and floors that change from pixel to pixel (-1: random, 0..40).
+    for (int floor : {0, 6, 19, 60, 255, -1}) {
+      std::vector<std::uint8_t> floors(static_cast<size_t>(image.cols));
+      for (std::uint8_t& f : floors) {
+        f = static_cast<std::uint8_t>(floor >= 0 ? floor : rng.uniform(0, 41));
+      }
       cv::Mat expected(image.size(), CV_8UC1, cv::Scalar(0));
       for (int y = 3; y < image.rows - 3; ++y) {
         kernels::fastScoreRowScalar(image.ptr(y) + 3, static_cast<std::ptrdiff_t>(image.step), image.cols - 6,
-                                    expected.ptr(y) + 3, floor);
+                                    expected.ptr(y) + 3, floors.data());
       }
       for (SimdLevel level : supportedSimdLevels()) {
         // Row lengths of every remainder modulo the widest vector, short rows on the scalar tail.
@@ -107,7 +112,7 @@ TEST(Kernels, FastScoreOfEveryInstructionSetEqualsTheScalarReference) {
           cv::Mat got(image.size(), CV_8UC1, cv::Scalar(0));
           for (int y = 3; y < image.rows - 3; ++y) {
             kernels::fastScoreRow(level, image.ptr(y) + 3, static_cast<std::ptrdiff_t>(image.step), width,
-                                  got.ptr(y) + 3, floor);
+                                  got.ptr(y) + 3, floors.data());
           }
           const cv::Rect written(3, 3, width, image.rows - 6);
           ASSERT_EQ(cv::norm(got(written), expected(written), cv::NORM_INF), 0.0)
@@ -175,9 +180,10 @@ TEST(Kernels, FastScoreIsTheLeastThresholdAtWhichCvFastRejects) {
   // m > t exactly when cv::FAST (no suppression) finds the pixel at threshold t.
   const cv::Mat image = test::syntheticScene(cv::Size(160, 120), 60, 11);
   cv::Mat scores(image.size(), CV_8UC1, cv::Scalar(0));
+  const std::vector<std::uint8_t> no_floor(static_cast<size_t>(image.cols), 0);
   for (int y = 3; y < image.rows - 3; ++y) {
     kernels::fastScoreRowScalar(image.ptr(y) + 3, static_cast<std::ptrdiff_t>(image.step), image.cols - 6,
-                                scores.ptr(y) + 3, 0);
+                                scores.ptr(y) + 3, no_floor.data());
   }
   for (int t : {0, 1, 7, 20, 80}) {
     std::vector<cv::KeyPoint> found;

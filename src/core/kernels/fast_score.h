@@ -21,16 +21,19 @@ constexpr int kFastCircle[16][2] = {{0, 3},  {1, 3},   {2, 2},   {3, 1},   {3, 0
                                     {0, -3}, {-1, -3}, {-2, -2}, {-3, -1}, {-3, 0}, {-3, 1}, {-2, 2}, {-1, 3}};
 
 // Writes the score of the n pixels centre[0..n) into out[0..n), or 0 where the score is at most
-// `floor` (no threshold at or above `floor` can make those pixels corners, nor count them in a
-// non-maximum suppression). Every pixel within 3 rows and 3 columns of them must be readable;
-// `step` is the row stride in bytes.
-void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
-void fastScoreRowVector128(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
-void fastScoreRowAvx2(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor);
+// the pixel's floor, floors[0..n) (no threshold at or above it can make the pixel a corner, nor
+// count it in a non-maximum suppression). Every pixel within 3 rows and 3 columns of them must be
+// readable; `step` is the row stride in bytes.
+void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
+                        const std::uint8_t* floors);
+void fastScoreRowVector128(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
+                           const std::uint8_t* floors);
+void fastScoreRowAvx2(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
+                      const std::uint8_t* floors);
 
 // The kernel of `level` (or the best one below it that this build has).
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
-                  int floor);
+                  const std::uint8_t* floors);
 
 }  // namespace kernels
 }  // namespace enhanced_orb

@@ -7,7 +7,8 @@
 namespace enhanced_orb {
 namespace kernels {
 
-void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out, int floor) {
+void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
+                        const std::uint8_t* floors) {
   std::ptrdiff_t offset[16];
   for (int k = 0; k < 16; ++k) {
     offset[k] = kFastCircle[k][1] * step + kFastCircle[k][0];
@@ -26,14 +27,14 @@ void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, 
       }
       score = std::max({score, brighter, darker});
     }
-    out[x] = static_cast<std::uint8_t>(score > floor ? score : 0);
+    out[x] = static_cast<std::uint8_t>(score > floors[x] ? score : 0);
   }
 }
 
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
-                  int floor) {
+                  const std::uint8_t* floors) {
   selectKernel(level, fastScoreRowScalar, fastScoreRowVector128, ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx2))(
-      centre, step, n, out, floor);
+      centre, step, n, out, floors);
 }
 
 }  // namespace kernels
