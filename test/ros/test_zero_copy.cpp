@@ -97,22 +97,26 @@ protected:
 TEST_F(ZeroCopy, ExtractorReceivesTheEnhancersMessageItself) {
   // The subscription on keypoints makes the chain subscribe its inputs (lazily).
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 20.0)) << "enhancer never subscribed";
-  // The enhancer may subscribe (for this test's probe) before the extractor does: warm the chain up
-  // until a frame comes through.
+  // The enhancer may subscribe (for this test's probe) before the extractor does, and this test's
+  // subscriptions to the debug topics connect in their own time: warm the chain up until a frame
+  // has come through with all three of its addresses.
+  auto stamp = [](int i) { return ros::Time(1000 + i).toNSec(); };
+  auto seenEverywhere = [&](int i) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return received_.count(stamp(i)) && published_.count(stamp(i)) && probed_.count(stamp(i));
+  };
   bool warm = false;
   for (int i = 0; i < 20 && !warm; ++i) {
-    const int before = keypoints_;
     image_pub_.publish(frame(100 + i));
-    warm = waitFor([&] { return keypoints_ > before; }, 1.0);
+    warm = waitFor([&] { return seenEverywhere(100 + i); }, 2.0);
   }
-  ASSERT_TRUE(warm) << "no keypoints came through the chain";
+  ASSERT_TRUE(warm) << "no frame came through the chain with its addresses";
   const int frames = 10;
   for (int i = 0; i < frames; ++i) {
     const int before = keypoints_;
     image_pub_.publish(frame(i));
     ASSERT_TRUE(waitFor([&] { return keypoints_ > before; }, 10.0)) << "no keypoints for frame " << i;
   }
-  auto stamp = [](int i) { return ros::Time(1000 + i).toNSec(); };
   ASSERT_TRUE(waitFor(
       [&] {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -123,7 +127,7 @@ TEST_F(ZeroCopy, ExtractorReceivesTheEnhancersMessageItself) {
         }
         return true;
       },
-      5.0))
+      10.0))
       << "some frame's addresses never arrived";
   std::lock_guard<std::mutex> lock(mutex_);
   // Every object the extractor (or this process's subscriber) received is one the enhancer
