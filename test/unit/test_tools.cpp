@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -103,6 +104,7 @@ protected:
 const std::string kExtract = ENHANCED_ORB_EXTRACT_TOOL;
 const std::string kEvaluate = ENHANCED_ORB_EVALUATE_TOOL;
 const std::string kEurocToBag = ENHANCED_ORB_EUROC_TO_BAG_TOOL;
+const std::string kCompare = ENHANCED_ORB_COMPARE_TOOL;
 
 }  // namespace
 
@@ -176,6 +178,39 @@ TEST_F(Tools, EvaluateSkipsOneBadFrameAndKeepsTheRest) {
     ++rows;
   }
   EXPECT_EQ(rows, 1 + 3 * 3);  // header, 3 frames x 3 methods
+}
+
+TEST_F(Tools, CompareSamplesTheStereoPairsAsAsked) {
+  EXPECT_EQ(run(kCompare + " --stereo-every 0 --output " + quoted(dir_ / "none")).code, 2);
+  EXPECT_EQ(run(kCompare + " --stereo-every x --output " + quoted(dir_ / "none")).code, 2);
+  if (!fs::exists(test::eurocDir() + "/mav0/cam1/data.csv")) {
+    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir();
+  }
+  auto stereoFrames = [&](int every) {
+    const fs::path out = dir_ / ("out" + std::to_string(every));
+    const Outcome r = run(kCompare + " --euroc " + test::eurocDir() + " --methods default --budgets 500 " +
+                          "--degradations none --every 1000 --steps 1 --pair-every 1000 --stereo-every " +
+                          std::to_string(every) + " --output " + quoted(out));
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream pairs(out / "euroc_pairs.csv");
+    std::vector<int> frames;
+    for (std::string line; std::getline(pairs, line);) {
+      if (line.find(",stereo,") != std::string::npos) {
+        frames.push_back(std::stoi(line.substr(0, line.find(','))));
+      }
+    }
+    return frames;
+  };
+  // Every 30th of the 95 frames that have a ground-truth pose: a stereo pair at each.
+  const std::vector<int> sparse = stereoFrames(30), dense = stereoFrames(15);
+  ASSERT_GE(sparse.size(), 2u);
+  for (int frame : sparse) {
+    EXPECT_EQ(frame % 30, 0) << frame;
+  }
+  EXPECT_GT(dense.size(), sparse.size());
+  for (int frame : dense) {
+    EXPECT_EQ(frame % 15, 0) << frame;
+  }
 }
 
 TEST_F(Tools, EvaluateExcludesPairsWithoutMotion) {
