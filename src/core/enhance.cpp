@@ -207,6 +207,15 @@ void addEdgeWeights(const cv::Mat& f, int y0, int y1, std::array<std::uint64_t, 
   }
 }
 
+// Exact integer counts (weights in 1/64ths) as the histogram equalizingLut reads.
+WeightedHistogram toWeightedHistogram(const std::array<std::uint64_t, 256>& counts) {
+  WeightedHistogram histogram{};
+  for (int i = 0; i < 256; ++i) {
+    histogram[i] = static_cast<double>(counts[i]);
+  }
+  return histogram;
+}
+
 // The default mode's enhancement (tone_curve equalize), in 8 bits: f by OpenCV's fixed-point
 // Gaussian, one global edge-weighted curve, and E as one table where sharpening is -1.
 EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads,
@@ -239,13 +248,12 @@ EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, 
       const size_t k = static_cast<size_t>(std::lower_bound(starts.begin(), starts.end(), y0) - starts.begin());
       addEdgeWeights(f, y0, y1, counts[k]);
     });
-    WeightedHistogram histogram{};
-    for (const std::array<std::uint64_t, 256>& c : counts) {
+    for (size_t k = 1; k < counts.size(); ++k) {
       for (int i = 0; i < 256; ++i) {
-        histogram[i] += static_cast<double>(c[i]);
+        counts[0][i] += counts[k][i];
       }
     }
-    curve = equalizingLut(histogram, params.alpha, params.tau);
+    curve = equalizingLut(toWeightedHistogram(counts[0]), params.alpha, params.tau);
   }
   result.image = output;
   result.image.create(gray.size(), CV_8UC1);
@@ -287,11 +295,7 @@ WeightedHistogram edgeWeightedHistogram(const cv::Mat& f) {
   if (!f.empty()) {
     addEdgeWeights(f, 0, f.rows, counts);
   }
-  WeightedHistogram histogram{};
-  for (int i = 0; i < 256; ++i) {
-    histogram[i] = static_cast<double>(counts[i]);
-  }
-  return histogram;
+  return toWeightedHistogram(counts);
 }
 
 EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads) {

@@ -191,39 +191,15 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
     return;
   }
   const int grid = thresholds.rows;
-  // One score per interior pixel, in a map of the level's size (only the interior is written).
-  // cv::FAST clamps its threshold to [0, 255]; a pixel scoring at or below its cell's threshold
-  // can neither be a corner nor weigh in a suppression (which counts neighbours of the same cell
-  // only), so the kernel may write 0 for it, and skip a vector of such pixels.
+  const SimdLevel simd = activeSimdLevel();
   ws.scores.create(level.size(), CV_8UC1);
   ws.floors.resize(static_cast<size_t>(interior.width));
-  const SimdLevel simd = activeSimdLevel();
-  for (int cy = 0; cy < grid; ++cy) {
-    cv::Rect rows;
-    for (int cx = 0; cx < grid; ++cx) {
-      const cv::Rect cell = gridCell(level.size(), grid, cx, cy) & interior;
-      if (!cell.empty()) {
-        std::fill(ws.floors.begin() + (cell.x - interior.x), ws.floors.begin() + (cell.br().x - interior.x),
-                  static_cast<std::uint8_t>(std::clamp(thresholds.at<int>(cy, cx), 0, 255)));
-        rows = cell;
-      }
-    }
-    for (int y = rows.y; y < rows.br().y; ++y) {
-      kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
-                            interior.width, ws.scores.ptr<std::uint8_t>(y) + interior.x, ws.floors.data());
-    }
-  }
-
-  // cv::FAST run on each cell's window (the cell widened by 3, where its circle reads) keeps a
-  // corner when its score exceeds that of each of its 8 neighbours, a neighbour counting 0 unless
-  // it lies in the cell and is a corner at the cell's threshold. With b = score for the cell's
-  // corners and 0 elsewhere (in and around the cell), that is b above the largest b around it.
-  // Corners come cell by cell (row-major), each cell row by row.
   ws.cell_lists.resize(static_cast<size_t>(grid));
   int starts_data[33];
   int band_thresholds[32];
   for (int cy = 0; cy < grid; ++cy) {
-    // The band's non-empty cells, left to right; gridCell's cells tile the level.
+    // The band's non-empty cells, left to right; gridCell's cells tile the level. cv::FAST clamps
+    // its threshold to [0, 255].
     int cells = 0;
     cv::Rect rows;
     for (int cx = 0; cx < grid; ++cx) {
@@ -231,6 +207,8 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
       if (!cell.empty()) {
         starts_data[cells] = cell.x;
         band_thresholds[cells] = std::clamp(thresholds.at<int>(cy, cx), 0, 255);
+        std::fill(ws.floors.begin() + (cell.x - interior.x), ws.floors.begin() + (cell.br().x - interior.x),
+                  static_cast<std::uint8_t>(band_thresholds[cells]));
         ++cells;
         rows = cell;
       }
@@ -239,6 +217,19 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
       continue;
     }
     starts_data[cells] = rows.br().x;
+    // The band's FAST scores (only the interior of the map is written). A pixel scoring at or
+    // below its cell's threshold can neither be a corner nor weigh in the suppression (which counts
+    // neighbours of the same cell only), so the kernel may write 0 for it, and skip a vector of
+    // such pixels.
+    for (int y = rows.y; y < rows.br().y; ++y) {
+      kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
+                            interior.width, ws.scores.ptr<std::uint8_t>(y) + interior.x, ws.floors.data());
+    }
+    // cv::FAST run on each cell's window (the cell widened by 3, where its circle reads) keeps a
+    // corner when its score exceeds that of each of its 8 neighbours, a neighbour counting 0 unless
+    // it lies in the cell and is a corner at the cell's threshold. With b = score for the cell's
+    // corners and 0 elsewhere (in and around the cell), that is b above the largest b around it;
+    // the band's rows are all it reads. Corners come cell by cell (row-major), each cell row by row.
     for (auto& list : ws.cell_lists) {
       list.clear();
     }
