@@ -23,9 +23,17 @@ struct BriefTest {
 // std::runtime_error when what is read off does not reproduce cv::ORB's descriptors.
 const std::array<BriefTest, 256>& orbTests();
 
+// What smoothForDescription reuses from call to call.
+struct SmoothingBuffers {
+  cv::Mat bordered;         // the level with a 3-pixel reflect-101 border
+  std::vector<float> rows;  // seven row passes
+};
+
 // cv::ORB's smoothing before description, to the bit: a 7x7 Gaussian, sigma 2, of the level as a
-// view with a reflect-101 border (`bordered` is a workspace).
-void smoothForDescription(const cv::Mat& level, cv::Mat& bordered, cv::Mat& smoothed);
+// view with a reflect-101 border. At the AVX2 level this project's kernels compute it
+// (kernels/pyramid_rows.h) when a check made once finds that they reproduce the installed
+// OpenCV's; otherwise cv::GaussianBlur does.
+void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::Mat& smoothed);
 
 // Writes the 32-byte descriptor of each keypoint (level coordinates, integer positions, angle in
 // degrees) to rows first_row.. of `descriptors` (CV_8U, 32 columns), reading `smoothed`. Every

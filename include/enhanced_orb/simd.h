@@ -8,7 +8,7 @@
 namespace enhanced_orb {
 
 // kScalar is the reference every other level is tested against; kVector128 is SSE2 on x86-64 (and
-// the 16-byte path elsewhere), kAvx2 x86-64 only. There is no AVX-512 level: its 64-byte kernels
+// the 16-byte path elsewhere), kAvx2 x86-64 with AVX2 and FMA. There is no AVX-512 level: its 64-byte kernels
 // were measured slower than the AVX2 ones on an AVX-512 machine (docs/RESULTS.md, "Speed").
 enum class SimdLevel { kScalar = 0, kVector128 = 1, kAvx2 = 2 };
 

@@ -19,6 +19,7 @@
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
 #include "kernels/suppression.h"
+#include "linear_resize.h"
 
 namespace enhanced_orb {
 namespace {
@@ -173,9 +174,10 @@ std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double sca
   std::vector<cv::Mat> pyramid{image};
   std::vector<cv::Size> sizes;
   pyramidSizes(image.size(), n_levels, scale_factor, sizes);
+  LinearResize resize;
   for (size_t level = 1; level < sizes.size(); ++level) {
     cv::Mat next;
-    cv::resize(pyramid.back(), next, sizes[level], 0, 0, cv::INTER_LINEAR_EXACT);
+    resize(pyramid.back(), next, sizes[level], activeSimdLevel());
     pyramid.push_back(next);
   }
   return pyramid;
@@ -482,10 +484,12 @@ void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoin
 struct OrbExtractor::Workspace {
   struct Level {
     cv::Mat image;  // levels 1.. (level 0 is the extraction's image)
+    LinearResize resize;  // from the level above
     ThresholdWorkspace threshold;
     CornerWorkspace corners;
     std::vector<cv::KeyPoint> keypoints;
-    cv::Mat bordered, smoothed;
+    SmoothingBuffers smoothing;
+    cv::Mat smoothed;
     StageTimings timings;
   };
   std::vector<Level> levels;
@@ -626,8 +630,7 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
     std::lock_guard<std::mutex> lock(pyramid_mutex);
     for (int next = built.load(std::memory_order_relaxed); next <= level; ++next) {
       cv::Mat& image = ws->levels[next].image;
-      image.create(sizes[next], CV_8UC1);
-      cv::resize(ws->pyramid[next - 1], image, sizes[next], 0, 0, cv::INTER_LINEAR_EXACT);
+      ws->levels[next].resize(ws->pyramid[next - 1], image, sizes[next], activeSimdLevel());
       ws->pyramid[next] = image;
       built.store(next + 1, std::memory_order_release);
     }
@@ -657,7 +660,7 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
     detectCorners(image, thresholds, l.corners, l.keypoints);
     l.timings.fast_ms = level_clock.lap();
     if (!l.keypoints.empty()) {
-      smoothForDescription(image, l.bordered, l.smoothed);
+      smoothForDescription(image, l.smoothing, l.smoothed);
     }
     l.timings.descriptor_ms = level_clock.lap();
   });

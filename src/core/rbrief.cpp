@@ -9,6 +9,9 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/simd.h"
+#include "kernels/pyramid_rows.h"
+
 namespace enhanced_orb {
 namespace {
 
@@ -107,8 +110,9 @@ void verify() {
   std::vector<cv::KeyPoint> theirs_kps = keypoints;
   cv::Mat theirs;
   openCvDescriber()->compute(image, theirs_kps, theirs);
-  cv::Mat bordered, smoothed;
-  smoothForDescription(image, bordered, smoothed);
+  SmoothingBuffers buffers;
+  cv::Mat smoothed;
+  smoothForDescription(image, buffers, smoothed);
   cv::Mat ours(static_cast<int>(keypoints.size()), 32, CV_8UC1);
   describe(smoothed, keypoints, ours, 0);
   if (theirs_kps.size() != keypoints.size() || cv::norm(ours, theirs, cv::NORM_HAMMING) != 0) {
@@ -131,13 +135,82 @@ const std::array<BriefTest, 256>& orbTests() {
   return tests;
 }
 
-void smoothForDescription(const cv::Mat& level, cv::Mat& bordered, cv::Mat& smoothed) {
+namespace {
+
+constexpr int kSmoothingRadius = 3;
+
+// The taps of cv::ORB's smoothing, single precision (kernels/pyramid_rows.h).
+const float* gaussianTaps() {
+  static const cv::Mat taps = cv::getGaussianKernel(7, 2, CV_32F);
+  return taps.ptr<float>();
+}
+
+void openCvSmoothing(const cv::Mat& bordered, cv::Size size, cv::Mat& smoothed) {
   // cv::ORB blurs each level as a view into its bordered pyramid, and OpenCV filters such a view
   // (reading the pixels around it) by another path than a whole image, which rounds differently.
-  constexpr int r = 3;
-  cv::copyMakeBorder(level, bordered, r, r, r, r, cv::BORDER_REFLECT_101);
-  cv::GaussianBlur(bordered(cv::Rect(r, r, level.cols, level.rows)), smoothed, cv::Size(7, 7), 2, 2,
-                   cv::BORDER_REFLECT_101);
+  cv::GaussianBlur(bordered(cv::Rect(kSmoothingRadius, kSmoothingRadius, size.width, size.height)), smoothed,
+                   cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
+}
+
+void kernelSmoothing(const cv::Mat& bordered, cv::Size size, SimdLevel level, std::vector<float>& rows,
+                     cv::Mat& smoothed) {
+  const size_t width = static_cast<size_t>(size.width);
+  rows.resize(7 * width);
+  smoothed.create(size, CV_8UC1);
+  const float* k = gaussianTaps();
+  // Row passes into a ring of seven: output row y reads bordered rows y .. y + 6.
+  for (int y = 0; y < bordered.rows; ++y) {
+    kernels::gaussianRow(level, bordered.ptr<std::uint8_t>(y), size.width, k, rows.data() + (y % 7) * width);
+    if (y >= 6) {
+      const float* ring[7];
+      for (int j = 0; j < 7; ++j) {
+        ring[j] = rows.data() + ((y - 6 + j) % 7) * width;
+      }
+      kernels::gaussianColumn(level, ring, size.width, k, smoothed.ptr<std::uint8_t>(y - 6));
+    }
+  }
+}
+
+// Whether the scalar kernels reproduce the installed OpenCV's smoothing, on noise (every rounding
+// case) and on a smooth ramp: decided once.
+bool kernelsMatchOpenCv() {
+  static const bool match = [] {
+    cv::Mat image(61, 83, CV_8UC1);
+    cv::RNG rng(11);
+    rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+    cv::Mat ramp(40, 97, CV_8UC1);
+    for (int y = 0; y < ramp.rows; ++y) {
+      for (int x = 0; x < ramp.cols; ++x) {
+        ramp.at<std::uint8_t>(y, x) = cv::saturate_cast<std::uint8_t>(2 * x + y);
+      }
+    }
+    for (const cv::Mat& probe : {image, ramp}) {
+      cv::Mat bordered, theirs, ours;
+      std::vector<float> rows;
+      cv::copyMakeBorder(probe, bordered, kSmoothingRadius, kSmoothingRadius, kSmoothingRadius, kSmoothingRadius,
+                         cv::BORDER_REFLECT_101);
+      openCvSmoothing(bordered, probe.size(), theirs);
+      kernelSmoothing(bordered, probe.size(), SimdLevel::kScalar, rows, ours);
+      if (cv::norm(theirs, ours, cv::NORM_INF) != 0) {
+        return false;
+      }
+    }
+    return true;
+  }();
+  return match;
+}
+
+}  // namespace
+
+void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::Mat& smoothed) {
+  constexpr int r = kSmoothingRadius;
+  cv::copyMakeBorder(level, buffers.bordered, r, r, r, r, cv::BORDER_REFLECT_101);
+  const SimdLevel simd = activeSimdLevel();
+  if (simd >= SimdLevel::kAvx2 && kernelsMatchOpenCv()) {
+    kernelSmoothing(buffers.bordered, level.size(), simd, buffers.rows, smoothed);
+  } else {
+    openCvSmoothing(buffers.bordered, level.size(), smoothed);
+  }
 }
 
 namespace {

@@ -14,7 +14,7 @@ bool cpuRuns(SimdLevel level) {
       return true;
 #if defined(ENHANCED_ORB_X86_KERNELS)
     case SimdLevel::kAvx2:
-      return __builtin_cpu_supports("avx2");
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 #else
     case SimdLevel::kAvx2:
       return false;

@@ -277,7 +277,18 @@ inline Extraction extract(const cv::Mat& gray, const Params& params) {
     return out;
   }
   const OrbParams& orb = params.orb;
-  const std::vector<cv::Mat> pyramid = buildPyramid(out.image, orb.n_levels, orb.scale_factor);
+  // cv::ORB's pyramid: each level the one above resized by OpenCV.
+  std::vector<cv::Mat> pyramid{out.image};
+  for (int level = 1; level < orb.n_levels; ++level) {
+    const float inv_scale = 1.0f / static_cast<float>(std::pow(orb.scale_factor, level));
+    const cv::Size size(cvRound(out.image.cols * inv_scale), cvRound(out.image.rows * inv_scale));
+    if (size.width < 1 || size.height < 1) {
+      break;
+    }
+    cv::Mat next;
+    cv::resize(pyramid.back(), next, size, 0, 0, cv::INTER_LINEAR_EXACT);
+    pyramid.push_back(next);
+  }
   const int n_levels = static_cast<int>(pyramid.size());
   std::vector<std::vector<cv::KeyPoint>> level_keypoints(n_levels);
   for (int level = 0; level < n_levels; ++level) {

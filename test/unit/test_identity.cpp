@@ -2,17 +2,22 @@
 // shared EuRoC frames, for every mode and budget, every instruction set this machine runs and one
 // and two threads; and each SIMD kernel against its scalar reference.
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/simd.h"
+#include "enhanced_orb/rbrief.h"
 #include "kernels/fast_score.h"
+#include "kernels/pyramid_rows.h"
 #include "kernels/suppression.h"
+#include "linear_resize.h"
 #include "reference_extractor.h"
 #include "test_images.h"
 
@@ -158,6 +163,131 @@ TEST(Kernels, SuppressionRowsOfEveryInstructionSetEqualTheScalarReference) {
       EXPECT_EQ(b1, b0) << toString(level) << ", width " << width;
       EXPECT_EQ(a1, a0) << toString(level) << ", width " << width;
       EXPECT_EQ(k1, k0) << toString(level) << ", width " << width;
+    }
+  }
+}
+
+TEST(Kernels, PyramidRowsOfEveryInstructionSetEqualTheScalarReference) {
+  cv::RNG rng(8);
+  for (int width : {1, 7, 8, 15, 16, 17, 64, 301, 627}) {
+    // Random taps inside a source of 1.3 x the width (and 16 bytes of slack), in blocks where they fit.
+    const int source_width = width + width / 3 + 18;
+    std::vector<std::uint8_t> source(static_cast<size_t>(source_width));
+    rng.fill(source, cv::RNG::UNIFORM, 0, 256);
+    std::vector<int> index(static_cast<size_t>(width));
+    std::vector<std::uint16_t> weight(static_cast<size_t>(width));
+    for (int x = 0; x < width; ++x) {
+      index[x] = x + x / 3;
+      weight[x] = static_cast<std::uint16_t>(x % 5 == 0 ? (x % 2) * 256 : rng.uniform(0, 257));
+    }
+    std::vector<int> block_start;
+    std::vector<std::uint8_t> block_shuffle;
+    for (int x = 0; x + 8 <= width; x += 8) {
+      block_start.push_back(index[x]);
+      for (int k = 0; k < 16; ++k) {
+        block_shuffle.push_back(static_cast<std::uint8_t>(index[x + k / 2] - index[x] + k % 2));
+      }
+    }
+    const kernels::LinearTaps taps{index.data(), weight.data(), width, block_start.data(), block_shuffle.data(),
+                                   static_cast<int>(block_start.size())};
+    std::vector<std::uint16_t> a(static_cast<size_t>(width)), b(static_cast<size_t>(width));
+    kernels::linearRowScalar(source.data(), taps, a.data());
+    for (int x = 0; x < width; ++x) {
+      b[x] = static_cast<std::uint16_t>(rng.uniform(0, 65281));
+    }
+    std::vector<std::uint8_t> column(static_cast<size_t>(width));
+    kernels::linearColumnScalar(a.data(), b.data(), 77, width, column.data());
+    // The Gaussian: seven row passes of random bytes (and 6 more pixels each) feeding a column.
+    const cv::Mat taps7 = cv::getGaussianKernel(7, 2, CV_32F);
+    const float* k = taps7.ptr<float>();
+    std::vector<std::uint8_t> pixels(static_cast<size_t>(7 * (width + 6)));
+    rng.fill(pixels, cv::RNG::UNIFORM, 0, 256);
+    std::vector<float> rows(static_cast<size_t>(7 * width));
+    const float* ring[7];
+    for (int j = 0; j < 7; ++j) {
+      kernels::gaussianRowScalar(pixels.data() + j * (width + 6), width, k, rows.data() + j * width);
+      ring[j] = rows.data() + j * width;
+    }
+    std::vector<std::uint8_t> smoothed(static_cast<size_t>(width));
+    kernels::gaussianColumnScalar(ring, width, k, smoothed.data());
+    for (SimdLevel level : supportedSimdLevels()) {
+      const std::string what = std::string(toString(level)) + ", width " + std::to_string(width);
+      std::vector<std::uint16_t> got(static_cast<size_t>(width));
+      kernels::linearRow(level, source.data(), taps, got.data());
+      EXPECT_EQ(got, a) << what;
+      std::vector<std::uint8_t> got8(static_cast<size_t>(width));
+      kernels::linearColumn(level, a.data(), b.data(), 77, width, got8.data());
+      EXPECT_EQ(got8, column) << what;
+      std::vector<float> row(static_cast<size_t>(width));
+      kernels::gaussianRow(level, pixels.data(), width, k, row.data());
+      EXPECT_EQ(0, std::memcmp(row.data(), rows.data(), row.size() * sizeof(float))) << what;
+      kernels::gaussianColumn(level, ring, width, k, got8.data());
+      EXPECT_EQ(got8, smoothed) << what;
+    }
+  }
+}
+
+TEST(Pyramid, ResizeEqualsOpenCvAtEveryInstructionSet) {
+  SimdScope scope;
+  std::vector<std::pair<cv::Mat, cv::Size>> cases;
+  for (const cv::Mat& frame : eurocFrames(23)) {
+    cv::Mat level = frame;
+    for (int l = 1; l < 8; ++l) {
+      const cv::Size size(cvRound(frame.cols / std::pow(1.2, l)), cvRound(frame.rows / std::pow(1.2, l)));
+      cases.emplace_back(level, size);
+      cv::resize(level, level, size, 0, 0, cv::INTER_LINEAR_EXACT);
+    }
+  }
+  // Noise at random sizes, up and down, the halving OpenCV computes by area, one-pixel sides.
+  cv::RNG rng(12);
+  for (int i = 0; i < 60; ++i) {
+    cv::Mat noise(rng.uniform(1, 90), rng.uniform(1, 120), CV_8UC1);
+    rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
+    cases.emplace_back(noise, cv::Size(rng.uniform(1, 2 * noise.cols + 2), rng.uniform(1, 2 * noise.rows + 2)));
+    cases.emplace_back(noise, cv::Size((noise.cols + 1) / 2, (noise.rows + 1) / 2));
+  }
+  const cv::Mat view = cases.front().first(cv::Rect(5, 7, 300, 200));  // a view with its own step
+  cases.emplace_back(view, cv::Size(250, 167));
+  for (SimdLevel simd : supportedSimdLevels()) {
+    setSimdLevel(simd);
+    LinearResize resize;
+    for (const auto& [source, size] : cases) {
+      cv::Mat theirs, ours;
+      cv::resize(source, theirs, size, 0, 0, cv::INTER_LINEAR_EXACT);
+      resize(source, ours, size, simd);
+      expectSameMat(ours, theirs,
+                    std::string(toString(simd)) + ", " + std::to_string(source.cols) + "x" +
+                        std::to_string(source.rows) + " to " + std::to_string(size.width) + "x" +
+                        std::to_string(size.height));
+    }
+  }
+}
+
+TEST(Pyramid, SmoothingEqualsCvOrbsAtEveryInstructionSet) {
+  SimdScope scope;
+  std::vector<cv::Mat> levels;
+  for (const cv::Mat& frame : eurocFrames(31)) {
+    for (const cv::Mat& level : buildPyramid(frame, 8, 1.2)) {
+      levels.push_back(level);
+    }
+  }
+  cv::RNG rng(4);
+  for (cv::Size size : {cv::Size(1, 1), cv::Size(5, 9), cv::Size(17, 3), cv::Size(33, 40), cv::Size(200, 61)}) {
+    cv::Mat noise(size, CV_8UC1);
+    rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
+    levels.push_back(noise);
+  }
+  for (SimdLevel simd : supportedSimdLevels()) {
+    setSimdLevel(simd);
+    SmoothingBuffers buffers;
+    for (const cv::Mat& level : levels) {
+      cv::Mat bordered, theirs, ours;
+      cv::copyMakeBorder(level, bordered, 3, 3, 3, 3, cv::BORDER_REFLECT_101);
+      cv::GaussianBlur(bordered(cv::Rect(3, 3, level.cols, level.rows)), theirs, cv::Size(7, 7), 2, 2,
+                       cv::BORDER_REFLECT_101);
+      smoothForDescription(level, buffers, ours);
+      expectSameMat(ours, theirs, std::string(toString(simd)) + ", " + std::to_string(level.cols) + "x" +
+                                      std::to_string(level.rows));
     }
   }
 }
