@@ -72,7 +72,7 @@ void LinearResize::operator()(const cv::Mat& src, cv::Mat& dst, cv::Size size, S
   dst.create(size, CV_8UC1);
   plan(src.size(), size);
   const kernels::LinearTaps taps{columns_.index.data(), columns_.weight.data(), size.width,
-                                 block_start_.data(), block_shuffle_.data(), static_cast<int>(block_start_.size())};
+                                 block_start_.data(),   block_shuffle_.data(),  static_cast<int>(block_start_.size())};
   // Each output row reads two source rows' row passes; consecutive outputs share them.
   int held[2] = {-1, -1};
   for (int y = 0; y < size.height; ++y) {

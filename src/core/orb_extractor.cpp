@@ -193,7 +193,7 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
     return;
   }
   const int grid = thresholds.rows;
-  const SimdLevel simd = activeSimdLevel();
+  const kernels::FastScoreRowKernel score_row = kernels::fastScoreRowKernel(activeSimdLevel());
   ws.scores.create(level.size(), CV_8UC1);
   ws.floors.resize(static_cast<size_t>(interior.width));
   ws.cell_lists.resize(static_cast<size_t>(grid));
@@ -224,8 +224,8 @@ void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorksp
     // neighbours of the same cell only), so the kernel may write 0 for it, and skip a vector of
     // such pixels.
     for (int y = rows.y; y < rows.br().y; ++y) {
-      kernels::fastScoreRow(simd, level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step),
-                            interior.width, ws.scores.ptr<std::uint8_t>(y) + interior.x, ws.floors.data());
+      score_row(level.ptr<std::uint8_t>(y) + interior.x, static_cast<std::ptrdiff_t>(level.step), interior.width,
+                ws.scores.ptr<std::uint8_t>(y) + interior.x, ws.floors.data());
     }
     // cv::FAST run on each cell's window (the cell widened by 3, where its circle reads) keeps a
     // corner when its score exceeds that of each of its 8 neighbours, a neighbour counting 0 unless
@@ -483,7 +483,7 @@ void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoin
 // Everything one extraction works in, kept from call to call.
 struct OrbExtractor::Workspace {
   struct Level {
-    cv::Mat image;  // levels 1.. (level 0 is the extraction's image)
+    cv::Mat image;        // levels 1.. (level 0 is the extraction's image)
     LinearResize resize;  // from the level above
     ThresholdWorkspace threshold;
     CornerWorkspace corners;

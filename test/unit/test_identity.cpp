@@ -12,8 +12,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/orb_extractor.h"
-#include "enhanced_orb/simd.h"
 #include "enhanced_orb/rbrief.h"
+#include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
 #include "kernels/pyramid_rows.h"
 #include "kernels/suppression.h"
@@ -188,8 +188,8 @@ TEST(Kernels, PyramidRowsOfEveryInstructionSetEqualTheScalarReference) {
         block_shuffle.push_back(static_cast<std::uint8_t>(index[x + k / 2] - index[x] + k % 2));
       }
     }
-    const kernels::LinearTaps taps{index.data(), weight.data(), width, block_start.data(), block_shuffle.data(),
-                                   static_cast<int>(block_start.size())};
+    const kernels::LinearTaps taps{index.data(),       weight.data(),        width,
+                                   block_start.data(), block_shuffle.data(), static_cast<int>(block_start.size())};
     std::vector<std::uint16_t> a(static_cast<size_t>(width)), b(static_cast<size_t>(width));
     kernels::linearRowScalar(source.data(), taps, a.data());
     for (int x = 0; x < width; ++x) {
@@ -286,8 +286,8 @@ TEST(Pyramid, SmoothingEqualsCvOrbsAtEveryInstructionSet) {
       cv::GaussianBlur(bordered(cv::Rect(3, 3, level.cols, level.rows)), theirs, cv::Size(7, 7), 2, 2,
                        cv::BORDER_REFLECT_101);
       smoothForDescription(level, buffers, ours);
-      expectSameMat(ours, theirs, std::string(toString(simd)) + ", " + std::to_string(level.cols) + "x" +
-                                      std::to_string(level.rows));
+      expectSameMat(ours, theirs,
+                    std::string(toString(simd)) + ", " + std::to_string(level.cols) + "x" + std::to_string(level.rows));
     }
   }
 }

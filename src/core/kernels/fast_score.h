@@ -31,7 +31,11 @@ void fastScoreRowVector128(const std::uint8_t* centre, std::ptrdiff_t step, int 
 void fastScoreRowAvx2(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
                       const std::uint8_t* floors);
 
-// The kernel of `level` (or the best one below it that this build has).
+// The kernel of `level` (or the best one below it that this build has); a caller scoring many rows
+// picks it once.
+using FastScoreRowKernel = void (*)(const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
+                                    const std::uint8_t* floors);
+FastScoreRowKernel fastScoreRowKernel(SimdLevel level);
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
                   const std::uint8_t* floors);
 

@@ -31,10 +31,14 @@ void fastScoreRowScalar(const std::uint8_t* centre, std::ptrdiff_t step, int n, 
   }
 }
 
+FastScoreRowKernel fastScoreRowKernel(SimdLevel level) {
+  return selectKernel<FastScoreRowKernel>(level, fastScoreRowScalar, fastScoreRowVector128,
+                                          ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx2));
+}
+
 void fastScoreRow(SimdLevel level, const std::uint8_t* centre, std::ptrdiff_t step, int n, std::uint8_t* out,
                   const std::uint8_t* floors) {
-  selectKernel(level, fastScoreRowScalar, fastScoreRowVector128, ENHANCED_ORB_X86_KERNEL(fastScoreRowAvx2))(
-      centre, step, n, out, floors);
+  fastScoreRowKernel(level)(centre, step, n, out, floors);
 }
 
 }  // namespace kernels

@@ -55,8 +55,10 @@ void linearColumnAvx2(const std::uint16_t* a, const std::uint16_t* b, int weight
   auto block = [&](int x) {
     const __m256i va = _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + x)), bias);
     const __m256i vb = _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + x)), bias);
-    const __m256i lo = _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(va, vb), weights), half), 16);
-    const __m256i hi = _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(va, vb), weights), half), 16);
+    const __m256i lo =
+        _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(va, vb), weights), half), 16);
+    const __m256i hi =
+        _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(va, vb), weights), half), 16);
     const __m256i words = _mm256_packs_epi32(lo, hi);  // back in order: unpack and pack work per lane
     const __m128i bytes = _mm_packs_epi16(_mm256_castsi256_si128(words), _mm256_extracti128_si256(words, 1));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x), _mm_xor_si128(bytes, _mm_set1_epi8(static_cast<char>(0x80))));
@@ -88,8 +90,8 @@ void gaussianRowAvx2(const std::uint8_t* src, int n, const float* k, float* out)
     const std::uint8_t* s = src + c;
     int i = 0;
     for (; i + 8 <= m + 6; i += 8) {
-      _mm256_store_ps(pixels + i,
-                      _mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)))));
+      _mm256_store_ps(pixels + i, _mm256_cvtepi32_ps(
+                                      _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)))));
     }
     for (; i < m + 6; ++i) {
       pixels[i] = static_cast<float>(s[i]);
