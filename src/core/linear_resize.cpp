@@ -65,7 +65,7 @@ void LinearResize::plan(cv::Size from, cv::Size to) {
 void LinearResize::operator()(const cv::Mat& src, cv::Mat& dst, cv::Size size, SimdLevel level) {
   CV_Assert(src.type() == CV_8UC1 && size.width > 0 && size.height > 0);
   const bool area = 2 * size.width == src.cols && 2 * size.height == src.rows;
-  if (level < SimdLevel::kAvx2 || area || src.cols < 2 || src.rows < 2 || size == src.size()) {
+  if (!kernels::hasVectorLinearKernels(level) || area || src.cols < 2 || src.rows < 2 || size == src.size()) {
     cv::resize(src, dst, size, 0, 0, cv::INTER_LINEAR_EXACT);
     return;
   }

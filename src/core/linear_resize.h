@@ -1,7 +1,8 @@
 // cv::resize(src, dst, size, 0, 0, cv::INTER_LINEAR_EXACT) for 8-bit single-channel images, to the
-// bit, with this project's AVX2 row kernels (kernels/pyramid_rows.h). OpenCV's own is built for
-// SSE2 in Debian's package and took 0.94 ms for the seven levels of a 752x480 pyramid here, these
-// kernels 0.45 ms (docs/RESULTS.md, "Speed"). Below the AVX2 level, and where OpenCV takes
+// bit, with this project's row kernels (kernels/pyramid_rows.h). OpenCV's own is built for SSE2 in
+// Debian's package and took 0.94 ms for the seven levels of a 752x480 pyramid here; the AVX2
+// kernels 0.30 ms, the SSE2 ones 0.42 ms (docs/RESULTS.md, "Speed"). Where this build has no vector
+// kernel for the level in use (the scalar level; targets other than x86), and where OpenCV takes
 // another path than the bilinear one (a 2x downscale on both axes, which it computes as an area
 // average; a source narrower or shorter than 2 pixels; equal sizes), cv::resize itself runs.
 #ifndef ENHANCED_ORB_LINEAR_RESIZE_H

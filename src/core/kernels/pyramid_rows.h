@@ -29,10 +29,13 @@ struct LinearTaps {
 
 // out[x] = (256 - weight[x]) src[index[x]] + weight[x] src[index[x] + 1] for every output x.
 void linearRowScalar(const std::uint8_t* src, const LinearTaps& taps, std::uint16_t* out);
+void linearRowVector128(const std::uint8_t* src, const LinearTaps& taps, std::uint16_t* out);  // x86 only
 void linearRowAvx2(const std::uint8_t* src, const LinearTaps& taps, std::uint16_t* out);
 
 // out[x] = ((256 - weight) a[x] + weight b[x] + 2^15) >> 16 for x in [0, n).
 void linearColumnScalar(const std::uint16_t* a, const std::uint16_t* b, int weight, int n, std::uint8_t* out);
+void linearColumnVector128(const std::uint16_t* a, const std::uint16_t* b, int weight, int n,
+                           std::uint8_t* out);  // x86 only
 void linearColumnAvx2(const std::uint16_t* a, const std::uint16_t* b, int weight, int n, std::uint8_t* out);
 
 // cv::ORB smooths each level with cv::GaussianBlur(7x7, sigma 2) of a view into its bordered
@@ -49,8 +52,10 @@ void gaussianRowAvx2(const std::uint8_t* src, int n, const float* k, float* out)
 void gaussianColumnScalar(const float* const* rows, int n, const float* k, std::uint8_t* out);
 void gaussianColumnAvx2(const float* const* rows, int n, const float* k, std::uint8_t* out);
 
-// The kernels of `level`: the vector ones at kAvx2, the scalar ones below it (where the pyramid
-// leaves both filters to OpenCV, whose scalar code is faster than this reference).
+// The kernels of `level`, or the best ones below it that this build has. Where only the scalar ones
+// would run the pyramid leaves the filter to OpenCV (whose code is faster than this reference):
+// the resize has vector kernels at kVector128 on x86 (SSE2) and at kAvx2, the smoothing at kAvx2.
+bool hasVectorLinearKernels(SimdLevel level);
 void linearRow(SimdLevel level, const std::uint8_t* src, const LinearTaps& taps, std::uint16_t* out);
 void linearColumn(SimdLevel level, const std::uint16_t* a, const std::uint16_t* b, int weight, int n,
                   std::uint8_t* out);

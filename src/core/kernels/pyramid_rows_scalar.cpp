@@ -44,13 +44,27 @@ void gaussianColumnScalar(const float* const* rows, int n, const float* k, std::
   }
 }
 
+// The 16-byte resize kernels are SSE2 code, built on x86 (pyramid_rows_vector128.cpp).
+#if defined(__SSE2__)
+#define ENHANCED_ORB_SSE2_KERNEL(kernel) kernel
+#else
+#define ENHANCED_ORB_SSE2_KERNEL(kernel) nullptr
+#endif
+
+bool hasVectorLinearKernels(SimdLevel level) {
+  return selectKernel(level, linearRowScalar, ENHANCED_ORB_SSE2_KERNEL(linearRowVector128),
+                      ENHANCED_ORB_X86_KERNEL(linearRowAvx2)) != linearRowScalar;
+}
+
 void linearRow(SimdLevel level, const std::uint8_t* src, const LinearTaps& taps, std::uint16_t* out) {
-  selectKernel(level, linearRowScalar, nullptr, ENHANCED_ORB_X86_KERNEL(linearRowAvx2))(src, taps, out);
+  selectKernel(level, linearRowScalar, ENHANCED_ORB_SSE2_KERNEL(linearRowVector128),
+               ENHANCED_ORB_X86_KERNEL(linearRowAvx2))(src, taps, out);
 }
 
 void linearColumn(SimdLevel level, const std::uint16_t* a, const std::uint16_t* b, int weight, int n,
                   std::uint8_t* out) {
-  selectKernel(level, linearColumnScalar, nullptr, ENHANCED_ORB_X86_KERNEL(linearColumnAvx2))(a, b, weight, n, out);
+  selectKernel(level, linearColumnScalar, ENHANCED_ORB_SSE2_KERNEL(linearColumnVector128),
+               ENHANCED_ORB_X86_KERNEL(linearColumnAvx2))(a, b, weight, n, out);
 }
 
 void gaussianRow(SimdLevel level, const std::uint8_t* src, int n, const float* k, float* out) {
