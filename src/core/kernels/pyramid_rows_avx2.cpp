@@ -35,41 +35,9 @@ void linearRowAvx2(const std::uint8_t* src, const LinearTaps& taps, std::uint16_
   for (; b < blocks; ++b) {
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 8 * b), linearBlock(src, taps, b));
   }
-  for (int x = 8 * blocks; x < taps.n; ++x) {
-    const std::uint8_t* p = src + taps.index[x];
-    const unsigned w = taps.weight[x];
-    out[x] = static_cast<std::uint16_t>((256 - w) * p[0] + w * p[1]);
-  }
-}
-
-void linearColumnAvx2(const std::uint16_t* a, const std::uint16_t* b, int weight, int n, std::uint8_t* out) {
-  if (n < 16) {
-    linearColumnScalar(a, b, weight, n, out);
-    return;
-  }
-  // As signed 16-bit lanes: (a - 2^15) (256 - w) + (b - 2^15) w = (256 - w) a + w b - 2^23, whose
-  // rounded shift is the output less 128.
-  const __m256i bias = _mm256_set1_epi16(static_cast<short>(0x8000));
-  const __m256i weights = _mm256_set1_epi32(static_cast<int>((static_cast<unsigned>(weight) << 16) | (256u - weight)));
-  const __m256i half = _mm256_set1_epi32(32768);
-  auto block = [&](int x) {
-    const __m256i va = _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + x)), bias);
-    const __m256i vb = _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + x)), bias);
-    const __m256i lo =
-        _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(va, vb), weights), half), 16);
-    const __m256i hi =
-        _mm256_srai_epi32(_mm256_add_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(va, vb), weights), half), 16);
-    const __m256i words = _mm256_packs_epi32(lo, hi);  // back in order: unpack and pack work per lane
-    const __m128i bytes = _mm_packs_epi16(_mm256_castsi256_si128(words), _mm256_extracti128_si256(words, 1));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x), _mm_xor_si128(bytes, _mm_set1_epi8(static_cast<char>(0x80))));
-  };
-  int x = 0;
-  for (; x + 16 <= n; x += 16) {
-    block(x);
-  }
-  if (x < n) {
-    block(n - 16);  // overlapping: rewrites the same values
-  }
+  // The outputs after the vectors, by the scalar kernel.
+  const LinearTaps tail{taps.index + 8 * blocks, taps.weight + 8 * blocks, taps.n - (8 * blocks), nullptr, nullptr, 0};
+  linearRowScalar(src, tail, out + 8 * blocks);
 }
 
 void gaussianRowAvx2(const std::uint8_t* src, int n, const float* k, float* out) {

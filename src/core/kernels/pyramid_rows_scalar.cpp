@@ -63,8 +63,8 @@ void linearRow(SimdLevel level, const std::uint8_t* src, const LinearTaps& taps,
 
 void linearColumn(SimdLevel level, const std::uint16_t* a, const std::uint16_t* b, int weight, int n,
                   std::uint8_t* out) {
-  selectKernel(level, linearColumnScalar, ENHANCED_ORB_SSE2_KERNEL(linearColumnVector128),
-               ENHANCED_ORB_X86_KERNEL(linearColumnAvx2))(a, b, weight, n, out);
+  selectKernel(level, linearColumnScalar, ENHANCED_ORB_SSE2_KERNEL(linearColumnVector128), nullptr)(a, b, weight, n,
+                                                                                                    out);
 }
 
 void gaussianRow(SimdLevel level, const std::uint8_t* src, int n, const float* k, float* out) {

@@ -40,11 +40,9 @@ void linearRowVector128(const std::uint8_t* src, const LinearTaps& taps, std::ui
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x),
                      _mm_add_epi16(_mm_slli_epi16(p0, 8), _mm_mullo_epi16(w, _mm_sub_epi16(p1, p0))));
   }
-  for (; x < taps.n; ++x) {
-    const std::uint8_t* p = src + index[x];
-    const unsigned w = taps.weight[x];
-    out[x] = static_cast<std::uint16_t>((256 - w) * p[0] + w * p[1]);
-  }
+  // The outputs after the vectors, by the scalar kernel.
+  const LinearTaps tail{taps.index + x, taps.weight + x, taps.n - x, nullptr, nullptr, 0};
+  linearRowScalar(src, tail, out + x);
 }
 
 void linearColumnVector128(const std::uint16_t* a, const std::uint16_t* b, int weight, int n, std::uint8_t* out) {
