@@ -55,7 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   p.enhance.tau = anyDouble(in, 0.0, 1.0);
   p.enhance.beta = anyDouble(in, 0.0, 2.0);
   p.enhance.sharpening = anyDouble(in, -1.0, 5.0);
-  p.enhance.tone_curve = in.ConsumeBool() ? eo::ToneCurve::kEqualize : eo::ToneCurve::kGamma;
+  p.enhance.tone_curve =
+      in.PickValueInArray({eo::ToneCurve::kEqualize, eo::ToneCurve::kGamma, eo::ToneCurve::kStretch});
   p.enhance.blur_ksize = anyInt(in, 1, 31);
   p.enhance.blur_sigma = anyDouble(in, 0.1, 10.0);
   p.enhance.std_threshold = anyDouble(in, 0.0, 1.0);

@@ -43,6 +43,12 @@ GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau)
 // the weighted CDF whose slope never falls below tau. The identity for an empty histogram.
 GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau);
 
+// tone_curve stretch: LUT(i) = 255 (i - lo) / (hi - lo), clamped to [0, 255], where lo is the
+// lowest level with more than tau n of the n pixels at or below it and hi the highest with more than
+// tau n at or above it: a fraction tau of the pixels is clipped at each end and the tones keep their
+// order and their ratios of contrast. The identity when hi <= lo (an empty or one-tone histogram).
+GammaLut stretchingLut(const Histogram& histogram, double tau);
+
 // The default mode's histogram of `f` (the filtered image, CV_8UC1): the pixels at even x of even
 // rows each add w = sqrt(|f(x+1, y) - f(x-1, y)| + |f(x, y+1) - f(x, y-1)|) (neighbours clamped at
 // the border) to the bin of f(x, y), so that flat regions (sky, walls, saturated areas) stop

@@ -27,12 +27,14 @@ enum class GammaMode {
 enum class ToneCurve {
   kGamma,     // the paper's truncated adaptive gamma, eqs 14-16 (on the plain histogram)
   kEqualize,  // edge-weighted equalisation: each pixel counts by sqrt(|gradient|), one global curve
+  kStretch,   // linear stretch of the tones between the tau and 1 - tau quantiles (the raw tone order)
 };
 
 // Named parameter sets.
 enum class Preset {
   kDefault,  // the default mode (the member initialisers)
   kPaper,    // Dai & Wu's method as published (ALGORITHM.md)
+  kStretch,  // the default mode with the raw tone order: well-exposed scenes whose light changes locally
 };
 
 // How the FAST threshold of each grid cell is chosen.
@@ -44,8 +46,10 @@ enum class ThresholdMode {
 // Section III-A: image enhancement.
 struct EnhanceParams {
   ToneCurve tone_curve = ToneCurve::kEqualize;
-  double alpha = 0.5;           // eq 12: smoothness exponent of the weighted histogram, [0, 1]
-  double tau = 0.0;             // eq 15 (gamma: lower truncation of gamma_i; equalize: least slope), [0, 1]
+  double alpha = 0.5;  // eq 12: smoothness exponent of the weighted histogram, [0, 1]
+  // eq 15 (gamma: lower truncation of gamma_i; equalize: least slope; stretch: the fraction of pixels
+  // clipped at each end, below 0.5), [0, 1]
+  double tau = 0.0;
   double beta = 1.0;            // eq 20: weight of the brightness mask T_mask, [0, 2]
   double sharpening = -1.0;     // eq 19: unsharp-mask degree, [-1, 5]; -1 leaves the filtered image f
   int blur_ksize = 3;           // eq 8: Gaussian kernel size, odd, [1, 31]
@@ -87,6 +91,10 @@ struct Params {
   static Params paper();
   // The paper's "original ORB": the paper preset with no enhancement and one fixed threshold.
   static Params baseline(int fast_threshold = 20);
+  // The default mode with tone_curve stretch (tau 0.05) and candidate_ratio 1: a frame's tones are
+  // only stretched linearly and each level keeps its strongest corners, so the ranking is the
+  // camera's own. For well-exposed scenes whose light changes inside the frame (sun and shadow).
+  static Params stretch();
   static Params preset(Preset preset);
 };
 
@@ -122,8 +130,8 @@ const char* toString(ToneCurve curve);
 const char* toString(Preset preset);
 bool parseGammaMode(const std::string& name, GammaMode& out);
 bool parseThresholdMode(const std::string& name, ThresholdMode& out);
-bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize"
-bool parsePreset(const std::string& name, Preset& out);        // "default", "paper"
+bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize", "stretch"
+bool parsePreset(const std::string& name, Preset& out);        // "default", "paper", "stretch"
 
 }  // namespace enhanced_orb
 

@@ -135,6 +135,25 @@ GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double 
   return lut;
 }
 
+GammaLut stretchingLut(const Histogram& histogram, double tau) {
+  double n = 0.0;
+  for (std::uint32_t count : histogram) {
+    n += count;
+  }
+  const double clipped = tau * n;
+  int lo = 0;
+  for (double below = 0.0; lo < 255 && (below += histogram[lo]) <= clipped; ++lo) {
+  }
+  int hi = 255;
+  for (double above = 0.0; hi > 0 && (above += histogram[hi]) <= clipped; --hi) {
+  }
+  GammaLut lut{};
+  for (int i = 0; i < 256; ++i) {
+    lut[i] = hi > lo ? static_cast<float>(std::clamp(255.0 * (i - lo) / (hi - lo), 0.0, 255.0)) : static_cast<float>(i);
+  }
+  return lut;
+}
+
 namespace {
 
 // Runs fn(first_row, end_row) on `bands` horizontal bands of `rows` rows, side by side when there
@@ -163,6 +182,18 @@ void bandStarts(int rows, int bands, std::vector<int>& starts) {
   for (int k = 0; k <= bands; ++k) {
     starts.push_back(static_cast<int>(static_cast<long long>(rows) * k / bands));
   }
+}
+
+// The plain histogram of an 8-bit image.
+Histogram histogramOf(const cv::Mat& image) {
+  Histogram histogram{};
+  for (int y = 0; y < image.rows; ++y) {
+    const std::uint8_t* row = image.ptr<std::uint8_t>(y);
+    for (int x = 0; x < image.cols; ++x) {
+      ++histogram[row[x]];
+    }
+  }
+  return histogram;
 }
 
 // sqrt(g) in 1/64ths for every gradient g = |dx| + |dy| of two 8-bit differences.
@@ -216,10 +247,11 @@ WeightedHistogram toWeightedHistogram(const std::array<std::uint64_t, 256>& coun
   return histogram;
 }
 
-// The default mode's enhancement (tone_curve equalize), in 8 bits: f by OpenCV's fixed-point
-// Gaussian, one global edge-weighted curve, and E as one table where sharpening is -1.
-EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads,
-                              EnhanceResult result) {
+// The 8-bit enhancement of tone_curve equalize (the default mode) and stretch: f by OpenCV's
+// fixed-point Gaussian, one global curve from f's histogram, and E as one table where sharpening
+// is -1.
+EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads,
+                          EnhanceResult result) {
   thread_local struct {
     cv::Mat f;
     std::vector<int> starts;
@@ -241,7 +273,9 @@ EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, 
   for (int i = 0; i < 256; ++i) {
     curve[i] = static_cast<float>(i);
   }
-  if (result.poor_quality) {
+  if (result.poor_quality && params.tone_curve == ToneCurve::kStretch) {
+    curve = stretchingLut(histogramOf(f), params.tau);
+  } else if (result.poor_quality) {
     std::vector<std::array<std::uint64_t, 256>>& counts = scratch.counts;
     counts.assign(starts.size() - 1, {});
     forEachBand(starts, [&](int y0, int y1) {
@@ -314,8 +348,8 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   result.lambda = imageLambda(gray, &result.mean_gray);
   result.poor_quality = isPoorQuality(result.lambda, params);
 
-  if (params.tone_curve == ToneCurve::kEqualize) {
-    return enhanceEqualize(gray, params, output, threads, result);
+  if (params.tone_curve != ToneCurve::kGamma) {
+    return enhance8Bit(gray, params, output, threads, result);
   }
 
   // The paper's method. Step 4: a bright poor image is enhanced as its negative, and turned back
@@ -369,14 +403,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
     // The paper's curve reads the table at round(f).
     cv::Mat& f_rounded = scratch.f_rounded;
     f.convertTo(f_rounded, CV_8U);
-    Histogram histogram{};
-    for (int y = 0; y < f_rounded.rows; ++y) {
-      const std::uint8_t* row = f_rounded.ptr<std::uint8_t>(y);
-      for (int x = 0; x < f_rounded.cols; ++x) {
-        ++histogram[row[x]];
-      }
-    }
-    GammaLut lut = truncatedGammaLut(histogram, params.alpha, params.tau);
+    GammaLut lut = truncatedGammaLut(histogramOf(f_rounded), params.alpha, params.tau);
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
     cv::scaleAdd(curve_f, b, e, e);

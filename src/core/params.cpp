@@ -39,8 +39,24 @@ Params Params::paper() {
   return p;
 }
 
+Params Params::stretch() {
+  Params p;
+  p.enhance.tone_curve = ToneCurve::kStretch;
+  p.enhance.tau = 0.05;
+  p.orb.candidate_ratio = 1.0;
+  return p;
+}
+
 Params Params::preset(Preset preset) {
-  return preset == Preset::kPaper ? paper() : Params();
+  switch (preset) {
+    case Preset::kPaper:
+      return paper();
+    case Preset::kStretch:
+      return stretch();
+    case Preset::kDefault:
+      break;
+  }
+  return Params();
 }
 
 Params Params::baseline(int fast_threshold) {
@@ -55,6 +71,11 @@ std::vector<std::string> validate(const EnhanceParams& p) {
   std::vector<std::string> out;
   checkRange(out, "alpha", p.alpha, 0.0, 1.0);
   checkRange(out, "tau", p.tau, 0.0, 1.0);
+  if (p.tone_curve == ToneCurve::kStretch && p.tau >= 0.5) {
+    std::ostringstream msg;
+    msg << "tau = " << p.tau << " must be below 0.5 with tone_curve stretch (it clips that fraction at each end)";
+    out.push_back(msg.str());
+  }
   checkRange(out, "beta", p.beta, 0.0, 2.0);
   checkRange(out, "sharpening", p.sharpening, -1.0, 5.0);
   checkRange(out, "blur_ksize", p.blur_ksize, 1, 31);
@@ -221,6 +242,8 @@ std::vector<std::string> inactiveParameters(const Params& p) {
       for (const char* name : {"tone_curve", "alpha", "tau", "beta"}) {
         out.push_back(std::string(name) + ": the tone curve is off (gamma_mode never)");
       }
+    } else if (e.tone_curve == ToneCurve::kStretch) {
+      out.push_back("alpha: not used by tone_curve stretch");
     }
   }
   if (p.orb.threshold_mode == ThresholdMode::kFixed) {
@@ -261,11 +284,27 @@ const char* toString(ThresholdMode mode) {
 }
 
 const char* toString(ToneCurve curve) {
-  return curve == ToneCurve::kGamma ? "gamma" : "equalize";
+  switch (curve) {
+    case ToneCurve::kGamma:
+      return "gamma";
+    case ToneCurve::kStretch:
+      return "stretch";
+    case ToneCurve::kEqualize:
+      break;
+  }
+  return "equalize";
 }
 
 const char* toString(Preset preset) {
-  return preset == Preset::kPaper ? "paper" : "default";
+  switch (preset) {
+    case Preset::kPaper:
+      return "paper";
+    case Preset::kStretch:
+      return "stretch";
+    case Preset::kDefault:
+      break;
+  }
+  return "default";
 }
 
 namespace {
@@ -285,11 +324,11 @@ bool parseName(const std::string& name, std::initializer_list<Enum> values, Enum
 }  // namespace
 
 bool parseToneCurve(const std::string& name, ToneCurve& out) {
-  return parseName(name, {ToneCurve::kGamma, ToneCurve::kEqualize}, out);
+  return parseName(name, {ToneCurve::kGamma, ToneCurve::kEqualize, ToneCurve::kStretch}, out);
 }
 
 bool parsePreset(const std::string& name, Preset& out) {
-  return parseName(name, {Preset::kDefault, Preset::kPaper}, out);
+  return parseName(name, {Preset::kDefault, Preset::kPaper, Preset::kStretch}, out);
 }
 
 bool parseGammaMode(const std::string& name, GammaMode& out) {

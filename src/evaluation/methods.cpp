@@ -20,12 +20,15 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 std::vector<std::string> methodNames() {
-  return {"default", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB"};
+  return {"default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB"};
 }
 
 Method makeMethod(const std::string& name, int budget, const Params& params) {
-  if (name == "default" || name == "paper" || name == "baseline") {
-    Params p = name == "default" ? params : name == "paper" ? Params::paper() : Params::baseline();
+  if (name == "default" || name == "stretch" || name == "paper" || name == "baseline") {
+    Params p = name == "default"   ? params
+               : name == "stretch" ? Params::stretch()
+               : name == "paper"   ? Params::paper()
+                                   : Params::baseline();
     p.orb.max_features = budget;
     auto extractor = std::make_shared<const OrbExtractor>(p);
     return {name, budget, [extractor](const cv::Mat& gray) {

@@ -60,7 +60,7 @@ private:
     std::vector<std::string> problems;
     ToneCurve curve;
     if (!parseToneCurve(config.tone_curve, curve)) {
-      problems.push_back("tone_curve '" + config.tone_curve + "' is not equalize or gamma");
+      problems.push_back("tone_curve '" + config.tone_curve + "' is not equalize, gamma or stretch");
     }
     GammaMode mode;
     if (!parseGammaMode(config.gamma_mode, mode)) {

@@ -38,7 +38,7 @@ options:
   --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv
                      (default: results/compare)
   --budgets LIST     feature budgets (default 500,1000,2000)
-  --methods LIST     of default,paper,baseline,cv::ORB,CLAHE+cv::ORB (default: all)
+  --methods LIST     of default,stretch,paper,baseline,cv::ORB,CLAHE+cv::ORB (default: all)
   --set NAME=VALUE   a parameter of the default mode (repeatable; e.g. --set alpha=0.7)
   --label NAME       the default mode's name in the output (default: default)
   --degradations L   EuRoC degradations (default: all of none,lowlight,lowlight_gain,spotlight,

@@ -33,8 +33,10 @@ poor_quality, inverted, enhance_ms and extract_ms.
 
 options:
   --output DIR           where to write (created if missing; required)
-  --preset NAME          default (the default mode, 1000 features) or paper (Dai & Wu as
-                         published, every corner); parameters given after it override it
+  --preset NAME          default (the default mode, 1000 features), paper (Dai & Wu as
+                         published, every corner) or stretch (the default mode with a linear
+                         stretch and the strongest corners: scenes whose light changes locally);
+                         parameters given after it override it
   --baseline             the original ORB: the paper preset without enhancement, fixed threshold
   --no-enhance           skip the enhancement, keep the adaptive threshold
   --save-enhanced        also write DIR/<stem>_enhanced.png
@@ -47,7 +49,7 @@ options:
 parameters (README "Parameters" gives each one's meaning, default and range):
   --max-features N  --candidate-ratio X  --n-levels N  --scale-factor X
   --threads N (threads of one extraction, default 1 so that timings compare; results are the same)
-  --tone-curve equalize|gamma  --alpha X  --tau X  --beta X  --sharpening X
+  --tone-curve equalize|gamma|stretch  --alpha X  --tau X  --beta X  --sharpening X
   --blur-ksize N  --blur-sigma X  --gamma-mode auto|always|never  --std-threshold X
   --grid-size N  --threshold-scale X  --c-min N  --threshold-mode adaptive|fixed  --fast-threshold N
 A value must be a whole number of the parameter's type and lie in its range; when an option is
@@ -78,7 +80,7 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
   enhanced_orb::Preset preset = enhanced_orb::Preset::kDefault;
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--preset" && !enhanced_orb::parsePreset(argv[i + 1], preset)) {
-      return std::string("invalid value for --preset: '") + argv[i + 1] + "' (default or paper)";
+      return std::string("invalid value for --preset: '") + argv[i + 1] + "' (default, paper or stretch)";
     }
   }
   Params& p = opt.params;

@@ -234,6 +234,76 @@ TEST(ToneCurve, EqualizingLutIsMonotoneWithSlopeAtLeastTau) {
   EXPECT_FLOAT_EQ(empty[77], 77.0f);
 }
 
+TEST(ToneCurve, StretchingLutMapsTheQuantilesToTheEnds) {
+  Histogram h{};
+  h[10] = 10;  // 10 % of 100 pixels at each end beyond the stretched range
+  h[40] = 40;
+  h[60] = 40;
+  h[90] = 10;
+  const GammaLut all = stretchingLut(h, 0.0);  // tau 0: the darkest and brightest level
+  EXPECT_FLOAT_EQ(all[10], 0.0f);
+  EXPECT_FLOAT_EQ(all[90], 255.0f);
+  EXPECT_FLOAT_EQ(all[50], 127.5f);
+  const GammaLut clipped = stretchingLut(h, 0.1);  // exactly 10 % at or below 10: clipped
+  EXPECT_FLOAT_EQ(clipped[40], 0.0f);
+  EXPECT_FLOAT_EQ(clipped[60], 255.0f);
+  EXPECT_FLOAT_EQ(clipped[10], 0.0f);
+  EXPECT_FLOAT_EQ(clipped[50], 127.5f);
+  const GammaLut under = stretchingLut(h, 0.09);  // less than the end bins hold: kept
+  EXPECT_FLOAT_EQ(under[10], 0.0f);
+  EXPECT_FLOAT_EQ(under[90], 255.0f);
+  // One level, or none: nothing to stretch, the identity.
+  Histogram one{};
+  one[77] = 5;
+  for (const GammaLut& lut : {stretchingLut(one, 0.2), stretchingLut(Histogram{}, 0.2)}) {
+    for (int i = 0; i < 256; ++i) {
+      EXPECT_FLOAT_EQ(lut[i], static_cast<float>(i));
+    }
+  }
+}
+
+TEST(Enhance, StretchUndoesAGainAndKeepsTheToneOrder) {
+  const cv::Mat scene = test::syntheticScene();
+  cv::Mat dark;
+  scene.convertTo(dark, CV_8U, 0.25);
+  EnhanceParams p;
+  p.tone_curve = ToneCurve::kStretch;
+  p.tau = 0.05;
+  const cv::Mat from_scene = enhance(scene, p).image;
+  const cv::Mat from_dark = enhance(dark, p).image;
+  // A quarter of the light, stretched back: the same image up to the quantisation of the dark copy
+  // (4 levels of the scene per level of the copy, times the stretch).
+  cv::Scalar mean_scene, mean_dark;
+  mean_scene = cv::mean(from_scene);
+  mean_dark = cv::mean(from_dark);
+  EXPECT_NEAR(mean_dark[0], mean_scene[0], 6.0);
+  cv::Mat diff;
+  cv::absdiff(from_scene, from_dark, diff);
+  EXPECT_LT(cv::mean(diff)[0], 6.0);
+  // The order of the filtered tones is kept: brighter in f is never darker in E.
+  cv::Mat f;
+  cv::GaussianBlur(dark, f, cv::Size(p.blur_ksize, p.blur_ksize), p.blur_sigma, p.blur_sigma,
+                   cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
+  int out_of_order = 0;
+  for (int y = 0; y < f.rows; ++y) {
+    for (int x = 1; x < f.cols; ++x) {
+      const int df = f.at<uchar>(y, x) - f.at<uchar>(y, x - 1);
+      const int de = from_dark.at<uchar>(y, x) - from_dark.at<uchar>(y, x - 1);
+      out_of_order += (df > 0 && de < 0) || (df < 0 && de > 0);
+    }
+  }
+  EXPECT_EQ(out_of_order, 0);
+  // tau is live: clipping less stretches less.
+  p.tau = 0.0;
+  cv::Scalar m1, s1, m2, s2;
+  cv::meanStdDev(from_dark, m1, s1);
+  cv::meanStdDev(enhance(dark, p).image, m2, s2);
+  EXPECT_LT(s2[0], s1[0] - 1.0);
+  // A constant image stays as it is.
+  const cv::Mat flat(40, 50, CV_8U, cv::Scalar(33));
+  EXPECT_EQ(cv::countNonZero(enhance(flat, p).image != flat), 0);
+}
+
 TEST(ToneCurve, EdgeWeightedHistogramIgnoresFlatRegions) {
   cv::Mat f(64, 64, CV_8U, cv::Scalar(200));  // flat, bright
   f(cv::Rect(0, 0, 32, 64)).setTo(cv::Scalar(30));

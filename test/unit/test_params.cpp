@@ -123,6 +123,24 @@ TEST(Params, DefaultModeIsValidAndDiffersFromThePaperWhereDocumented) {
   EXPECT_EQ(Params::preset(Preset::kDefault).enhance.tone_curve, ToneCurve::kEqualize);
 }
 
+TEST(Params, StretchPresetIsTheDefaultModeWithTheRawToneOrder) {
+  const Params s = Params::preset(Preset::kStretch);
+  EXPECT_TRUE(validate(s).empty()) << joinMessages(validate(s));
+  EXPECT_EQ(s.enhance.tone_curve, ToneCurve::kStretch);
+  EXPECT_DOUBLE_EQ(s.enhance.tau, 0.05);
+  EXPECT_DOUBLE_EQ(s.orb.candidate_ratio, 1.0);
+  // Everything else is the default mode's.
+  Params d;
+  d.enhance.tone_curve = s.enhance.tone_curve;
+  d.enhance.tau = s.enhance.tau;
+  d.orb.candidate_ratio = s.orb.candidate_ratio;
+  for (const char* name :
+       {"enhance", "alpha", "beta", "sharpening", "blur_ksize", "blur_sigma", "gamma_mode", "grid_size",
+        "threshold_scale", "c_min", "threshold_mode", "max_features", "n_levels", "scale_factor"}) {
+    EXPECT_EQ(paramText(s, name), paramText(d, name)) << name;
+  }
+}
+
 TEST(Params, BaselineIsThePaperWithoutEnhancement) {
   const Params b = Params::baseline();
   EXPECT_FALSE(b.enhance_enabled);
@@ -150,12 +168,12 @@ TEST(Params, SetParamByNameParsesWholeValuesOnly) {
 }
 
 TEST(Params, NamesRoundTrip) {
-  for (Preset preset : {Preset::kDefault, Preset::kPaper}) {
+  for (Preset preset : {Preset::kDefault, Preset::kPaper, Preset::kStretch}) {
     Preset parsed = Preset::kDefault;
     ASSERT_TRUE(parsePreset(toString(preset), parsed));
     EXPECT_EQ(parsed, preset);
   }
-  for (ToneCurve curve : {ToneCurve::kGamma, ToneCurve::kEqualize}) {
+  for (ToneCurve curve : {ToneCurve::kGamma, ToneCurve::kEqualize, ToneCurve::kStretch}) {
     ToneCurve parsed = ToneCurve::kGamma;
     ASSERT_TRUE(parseToneCurve(toString(curve), parsed));
     EXPECT_EQ(parsed, curve);
@@ -189,6 +207,26 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   EXPECT_TRUE(has(base, "c_min"));
   EXPECT_TRUE(has(base, "alpha"));
   EXPECT_FALSE(has(base, "fast_threshold"));
+  Params stretch;
+  stretch.enhance.tone_curve = ToneCurve::kStretch;
+  const std::vector<std::string> st = inactiveParameters(stretch);
+  EXPECT_TRUE(has(st, "alpha"));  // the stretch reads quantiles only
+  EXPECT_FALSE(has(st, "tau"));
+  EXPECT_FALSE(has(st, "beta"));
+}
+
+TEST(Params, StretchClipsLessThanHalfAtEachEnd) {
+  Params p;
+  p.enhance.tone_curve = ToneCurve::kStretch;
+  p.enhance.tau = 0.49;
+  EXPECT_TRUE(validate(p).empty());
+  p.enhance.tau = 0.5;  // in [0, 1], but nothing would be left between the quantiles
+  const std::vector<std::string> problems = validate(p);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("tau = 0.5"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("stretch"), std::string::npos) << problems[0];
+  p.enhance.tone_curve = ToneCurve::kEqualize;
+  EXPECT_TRUE(validate(p).empty());
 }
 
 TEST(Params, ParamTextReadsBackToTheSameValue) {

@@ -26,7 +26,7 @@ struct Method {
   std::function<Features(const cv::Mat& gray)> run;
 };
 
-// "default", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB".
+// "default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (stretch and paper: the presets).
 std::vector<std::string> methodNames();
 
 // A method by name at a budget (cv::ORB asks for 10^6 features when budget is 0). `params` replaces
