@@ -121,7 +121,8 @@ def summary_cell(values_by_test, mode):
         return "-"
     losing = {t: r for t, r in ratios.items() if r <= 1.0}
     if not losing:
-        return "wins (%.2f-%.2fx)" % (min(ratios.values()), max(ratios.values()))
+        low, high = min(ratios.values()), max(ratios.values())
+        return "wins (%.2fx)" % low if "%.2f" % low == "%.2f" % high else "wins (%.2f-%.2fx)" % (low, high)
     return "**loses**: " + ", ".join("%s %.2fx" % (t, r) for t, r in sorted(losing.items()))
 
 
