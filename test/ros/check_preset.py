@@ -15,7 +15,8 @@ from pipeline_client import PipelineClient, image, scene
 # Params::stretch(): the default mode with these three (include/enhanced_orb/params.h).
 PRESET = {"/cam0/enhance": {"tone_curve": "stretch", "tau": 0.05}, "/cam0/extract": {"candidate_ratio": 1.0}}
 # And what it keeps of the default mode (cfg/*.cfg defaults).
-KEPT = {"/cam0/enhance": {"alpha": 0.5, "beta": 1.0, "gamma_mode": "always"}, "/cam0/extract": {"max_features": 1000}}
+KEPT = {"/cam0/enhance": {"alpha": 0.5, "beta": 1.0, "gamma_mode": "always"},
+        "/cam0/extract": {"max_features": 1000}}
 
 
 class Preset(unittest.TestCase):
