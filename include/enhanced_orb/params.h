@@ -132,6 +132,11 @@ bool parseGammaMode(const std::string& name, GammaMode& out);
 bool parseThresholdMode(const std::string& name, ThresholdMode& out);
 bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize", "stretch"
 bool parsePreset(const std::string& name, Preset& out);        // "default", "paper", "stretch"
+// The names each parser reads, for messages: "default, paper or stretch".
+std::string toneCurveNames();
+std::string presetNames();
+std::string gammaModeNames();
+std::string thresholdModeNames();
 
 }  // namespace enhanced_orb
 

@@ -1,5 +1,6 @@
 #include "enhanced_orb/params.h"
 
+#include <array>
 #include <functional>
 #include <initializer_list>
 #include <optional>
@@ -309,9 +310,15 @@ const char* toString(Preset preset) {
 
 namespace {
 
+// Every value of each named enum: what the parsers read and the name lists say.
+constexpr std::array<ToneCurve, 3> kToneCurves = {ToneCurve::kGamma, ToneCurve::kEqualize, ToneCurve::kStretch};
+constexpr std::array<Preset, 3> kPresets = {Preset::kDefault, Preset::kPaper, Preset::kStretch};
+constexpr std::array<GammaMode, 3> kGammaModes = {GammaMode::kAuto, GammaMode::kAlways, GammaMode::kNever};
+constexpr std::array<ThresholdMode, 2> kThresholdModes = {ThresholdMode::kAdaptive, ThresholdMode::kFixed};
+
 // The enum value whose name is `name`, among `values`; false (and `out` unchanged) when none is.
-template <typename Enum>
-bool parseName(const std::string& name, std::initializer_list<Enum> values, Enum& out) {
+template <typename Enum, size_t N>
+bool parseName(const std::string& name, const std::array<Enum, N>& values, Enum& out) {
   for (Enum v : values) {
     if (name == toString(v)) {
       out = v;
@@ -321,22 +328,48 @@ bool parseName(const std::string& name, std::initializer_list<Enum> values, Enum
   return false;
 }
 
+// "a, b or c".
+template <typename Enum, size_t N>
+std::string nameList(const std::array<Enum, N>& values) {
+  std::string list;
+  for (size_t i = 0; i < N; ++i) {
+    list += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(toString(values[i]));
+  }
+  return list;
+}
+
 }  // namespace
 
 bool parseToneCurve(const std::string& name, ToneCurve& out) {
-  return parseName(name, {ToneCurve::kGamma, ToneCurve::kEqualize, ToneCurve::kStretch}, out);
+  return parseName(name, kToneCurves, out);
 }
 
 bool parsePreset(const std::string& name, Preset& out) {
-  return parseName(name, {Preset::kDefault, Preset::kPaper, Preset::kStretch}, out);
+  return parseName(name, kPresets, out);
 }
 
 bool parseGammaMode(const std::string& name, GammaMode& out) {
-  return parseName(name, {GammaMode::kAuto, GammaMode::kAlways, GammaMode::kNever}, out);
+  return parseName(name, kGammaModes, out);
 }
 
 bool parseThresholdMode(const std::string& name, ThresholdMode& out) {
-  return parseName(name, {ThresholdMode::kAdaptive, ThresholdMode::kFixed}, out);
+  return parseName(name, kThresholdModes, out);
+}
+
+std::string toneCurveNames() {
+  return nameList(kToneCurves);
+}
+
+std::string presetNames() {
+  return nameList(kPresets);
+}
+
+std::string gammaModeNames() {
+  return nameList(kGammaModes);
+}
+
+std::string thresholdModeNames() {
+  return nameList(kThresholdModes);
 }
 
 }  // namespace enhanced_orb

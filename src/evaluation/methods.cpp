@@ -24,11 +24,10 @@ std::vector<std::string> methodNames() {
 }
 
 Method makeMethod(const std::string& name, int budget, const Params& params) {
-  if (name == "default" || name == "stretch" || name == "paper" || name == "baseline") {
-    Params p = name == "default"   ? params
-               : name == "stretch" ? Params::stretch()
-               : name == "paper"   ? Params::paper()
-                                   : Params::baseline();
+  Preset preset = Preset::kDefault;
+  if (name == "baseline" || parsePreset(name, preset)) {
+    // The default mode's parameters are the caller's; a named preset's its own.
+    Params p = name == "baseline" ? Params::baseline() : preset == Preset::kDefault ? params : Params::preset(preset);
     p.orb.max_features = budget;
     auto extractor = std::make_shared<const OrbExtractor>(p);
     return {name, budget, [extractor](const cv::Mat& gray) {

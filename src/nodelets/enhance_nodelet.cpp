@@ -60,11 +60,11 @@ private:
     std::vector<std::string> problems;
     ToneCurve curve;
     if (!parseToneCurve(config.tone_curve, curve)) {
-      problems.push_back("tone_curve '" + config.tone_curve + "' is not equalize, gamma or stretch");
+      problems.push_back("tone_curve '" + config.tone_curve + "' is not " + toneCurveNames());
     }
     GammaMode mode;
     if (!parseGammaMode(config.gamma_mode, mode)) {
-      problems.push_back("gamma_mode '" + config.gamma_mode + "' is not auto, always or never");
+      problems.push_back("gamma_mode '" + config.gamma_mode + "' is not " + gammaModeNames());
     }
     for (const std::string& problem : validate(toParams(config))) {
       problems.push_back(problem);

@@ -68,7 +68,7 @@ private:
     std::vector<std::string> problems;
     ThresholdMode mode;
     if (!parseThresholdMode(config.threshold_mode, mode)) {
-      problems.push_back("threshold_mode '" + config.threshold_mode + "' is not adaptive or fixed");
+      problems.push_back("threshold_mode '" + config.threshold_mode + "' is not " + thresholdModeNames());
     }
     for (const std::string& problem : validate(toParams(config))) {
       problems.push_back(problem);

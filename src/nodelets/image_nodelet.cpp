@@ -271,7 +271,7 @@ Preset ImageNodelet::readPreset() {
   const std::string name = getPrivateNodeHandle().param<std::string>("preset", "default");
   Preset preset = Preset::kDefault;
   if (!parsePreset(name, preset)) {
-    NODELET_ERROR("preset '%s' is not default, paper or stretch; using default", name.c_str());
+    NODELET_ERROR("preset '%s' is not %s; using default", name.c_str(), presetNames().c_str());
   }
   NODELET_INFO("preset %s", toString(preset));
   return preset;

@@ -80,7 +80,7 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
   enhanced_orb::Preset preset = enhanced_orb::Preset::kDefault;
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--preset" && !enhanced_orb::parsePreset(argv[i + 1], preset)) {
-      return std::string("invalid value for --preset: '") + argv[i + 1] + "' (default, paper or stretch)";
+      return std::string("invalid value for --preset: '") + argv[i + 1] + "' (" + enhanced_orb::presetNames() + ")";
     }
   }
   Params& p = opt.params;

@@ -178,6 +178,34 @@ TEST(Params, NamesRoundTrip) {
     ASSERT_TRUE(parseToneCurve(toString(curve), parsed));
     EXPECT_EQ(parsed, curve);
   }
+  // The name lists of the messages hold every name the parsers read, and only those.
+  auto names = [](const std::string& list) {
+    std::vector<std::string> out;
+    std::string rest = list;
+    for (const std::string sep : {", ", " or "}) {
+      size_t at;
+      while ((at = rest.find(sep)) != std::string::npos) {
+        out.push_back(rest.substr(0, at));
+        rest = rest.substr(at + sep.size());
+      }
+    }
+    out.push_back(rest);
+    return out;
+  };
+  const std::vector<std::string> presets = names(presetNames());
+  ASSERT_EQ(presets.size(), 3u) << presetNames();
+  for (const std::string& name : presets) {
+    Preset parsed;
+    EXPECT_TRUE(parsePreset(name, parsed)) << name;
+  }
+  const std::vector<std::string> curves = names(toneCurveNames());
+  ASSERT_EQ(curves.size(), 3u) << toneCurveNames();
+  for (const std::string& name : curves) {
+    ToneCurve parsed;
+    EXPECT_TRUE(parseToneCurve(name, parsed)) << name;
+  }
+  EXPECT_EQ(names(gammaModeNames()).size(), 3u) << gammaModeNames();
+  EXPECT_EQ(thresholdModeNames(), "adaptive or fixed");
   Preset unchanged = Preset::kPaper;
   EXPECT_FALSE(parsePreset("fast", unchanged));
   EXPECT_EQ(unchanged, Preset::kPaper);
