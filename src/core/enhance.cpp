@@ -140,12 +140,17 @@ GammaLut stretchingLut(const Histogram& histogram, double tau) {
   for (std::uint32_t count : histogram) {
     n += count;
   }
+  // lo: the first level whose count from 0 up to it passes tau n; hi: likewise from 255 down.
   const double clipped = tau * n;
   int lo = 0;
-  for (double below = 0.0; lo < 255 && (below += histogram[lo]) <= clipped; ++lo) {
+  double below = histogram[0];
+  while (lo < 255 && below <= clipped) {
+    below += histogram[++lo];
   }
   int hi = 255;
-  for (double above = 0.0; hi > 0 && (above += histogram[hi]) <= clipped; --hi) {
+  double above = histogram[255];
+  while (hi > 0 && above <= clipped) {
+    above += histogram[--hi];
   }
   GammaLut lut{};
   for (int i = 0; i < 256; ++i) {

@@ -1,6 +1,5 @@
 #include "enhanced_orb/params.h"
 
-#include <array>
 #include <functional>
 #include <initializer_list>
 #include <optional>
@@ -268,60 +267,40 @@ std::string joinMessages(const std::vector<std::string>& messages) {
   return joined;
 }
 
-const char* toString(GammaMode mode) {
-  switch (mode) {
-    case GammaMode::kAlways:
-      return "always";
-    case GammaMode::kNever:
-      return "never";
-    case GammaMode::kAuto:
-      break;
-  }
-  return "auto";
-}
-
-const char* toString(ThresholdMode mode) {
-  return mode == ThresholdMode::kFixed ? "fixed" : "adaptive";
-}
-
-const char* toString(ToneCurve curve) {
-  switch (curve) {
-    case ToneCurve::kGamma:
-      return "gamma";
-    case ToneCurve::kStretch:
-      return "stretch";
-    case ToneCurve::kEqualize:
-      break;
-  }
-  return "equalize";
-}
-
-const char* toString(Preset preset) {
-  switch (preset) {
-    case Preset::kPaper:
-      return "paper";
-    case Preset::kStretch:
-      return "stretch";
-    case Preset::kDefault:
-      break;
-  }
-  return "default";
-}
-
 namespace {
 
-// Every value of each named enum: what the parsers read and the name lists say.
-constexpr std::array<ToneCurve, 3> kToneCurves = {ToneCurve::kGamma, ToneCurve::kEqualize, ToneCurve::kStretch};
-constexpr std::array<Preset, 3> kPresets = {Preset::kDefault, Preset::kPaper, Preset::kStretch};
-constexpr std::array<GammaMode, 3> kGammaModes = {GammaMode::kAuto, GammaMode::kAlways, GammaMode::kNever};
-constexpr std::array<ThresholdMode, 2> kThresholdModes = {ThresholdMode::kAdaptive, ThresholdMode::kFixed};
+// Every value of each named enum with its name: what toString() says, the parsers read and the
+// name lists show.
+template <typename Enum>
+struct Named {
+  Enum value;
+  const char* name;
+};
+constexpr Named<ToneCurve> kToneCurves[] = {
+    {ToneCurve::kGamma, "gamma"}, {ToneCurve::kEqualize, "equalize"}, {ToneCurve::kStretch, "stretch"}};
+constexpr Named<Preset> kPresets[] = {
+    {Preset::kDefault, "default"}, {Preset::kPaper, "paper"}, {Preset::kStretch, "stretch"}};
+constexpr Named<GammaMode> kGammaModes[] = {
+    {GammaMode::kAuto, "auto"}, {GammaMode::kAlways, "always"}, {GammaMode::kNever, "never"}};
+constexpr Named<ThresholdMode> kThresholdModes[] = {{ThresholdMode::kAdaptive, "adaptive"},
+                                                    {ThresholdMode::kFixed, "fixed"}};
 
-// The enum value whose name is `name`, among `values`; false (and `out` unchanged) when none is.
 template <typename Enum, size_t N>
-bool parseName(const std::string& name, const std::array<Enum, N>& values, Enum& out) {
-  for (Enum v : values) {
-    if (name == toString(v)) {
-      out = v;
+const char* nameOf(Enum value, const Named<Enum> (&table)[N]) {
+  for (const Named<Enum>& entry : table) {
+    if (entry.value == value) {
+      return entry.name;
+    }
+  }
+  return "?";
+}
+
+// The enum value whose name is `name`; false (and `out` unchanged) when none is.
+template <typename Enum, size_t N>
+bool parseName(const std::string& name, const Named<Enum> (&table)[N], Enum& out) {
+  for (const Named<Enum>& entry : table) {
+    if (name == entry.name) {
+      out = entry.value;
       return true;
     }
   }
@@ -330,15 +309,31 @@ bool parseName(const std::string& name, const std::array<Enum, N>& values, Enum&
 
 // "a, b or c".
 template <typename Enum, size_t N>
-std::string nameList(const std::array<Enum, N>& values) {
+std::string nameList(const Named<Enum> (&table)[N]) {
   std::string list;
   for (size_t i = 0; i < N; ++i) {
-    list += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(toString(values[i]));
+    list += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(table[i].name);
   }
   return list;
 }
 
 }  // namespace
+
+const char* toString(GammaMode mode) {
+  return nameOf(mode, kGammaModes);
+}
+
+const char* toString(ThresholdMode mode) {
+  return nameOf(mode, kThresholdModes);
+}
+
+const char* toString(ToneCurve curve) {
+  return nameOf(curve, kToneCurves);
+}
+
+const char* toString(Preset preset) {
+  return nameOf(preset, kPresets);
+}
 
 bool parseToneCurve(const std::string& name, ToneCurve& out) {
   return parseName(name, kToneCurves, out);
