@@ -10,7 +10,7 @@ import os
 import sys
 
 GROUPS = ["<40", "40-80", "80-170", ">170", "webcam"]
-ORDER = ["default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB"]
+ORDER = ["default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]
 RIVALS = ["baseline", "cv::ORB", "CLAHE+cv::ORB"]  # what the default mode must beat
 
 

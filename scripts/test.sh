@@ -9,6 +9,8 @@ export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 # rostest starts its own master; keep its logs and state out of the user's ~/.ros.
 export ROS_HOME=$(mktemp -d /tmp/enhanced_orb_test.XXXXXX)
 export ROS_LOG_DIR=$ROS_HOME/log
+# Tests that read the shared data fail, rather than skip, when it is missing.
+export ENHANCED_ORB_REQUIRE_DATA=1
 rm -rf "$ROOT/build/test_results"
 make -C "$ROOT/build" run_tests -j1 >"$ROOT/build/run_tests.log" 2>&1
 # The identity tests once more on a build with only the portable kernels (-DENHANCED_ORB_PORTABLE=ON).

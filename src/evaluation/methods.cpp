@@ -7,6 +7,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/evaluation/orb_slam_style.h"
 #include "enhanced_orb/orb_extractor.h"
 
 namespace enhanced_orb {
@@ -20,7 +21,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 std::vector<std::string> methodNames() {
-  return {"default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB"};
+  return {"default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"};
 }
 
 Method makeMethod(const std::string& name, int budget, const Params& params) {
@@ -49,6 +50,18 @@ Method makeMethod(const std::string& name, int budget, const Params& params) {
                 input = gray;
               }
               orb->detectAndCompute(input, cv::noArray(), f.keypoints, f.descriptors);
+              f.ms = msSince(start);
+              return f;
+            }};
+  }
+  if (name == "ORB-SLAM") {
+    OrbSlamStyleParams p;
+    p.n_features = budget > 0 ? budget : 1000000;
+    auto extractor = std::make_shared<const OrbSlamStyleExtractor>(p);
+    return {name, budget, [extractor](const cv::Mat& gray) {
+              Features f;
+              const auto start = std::chrono::steady_clock::now();
+              extractor->extract(gray, f.keypoints, f.descriptors);
               f.ms = msSince(start);
               return f;
             }};

@@ -77,7 +77,19 @@ double repeatability(const std::vector<cv::KeyPoint>& kp_a, const std::vector<cv
 
 std::optional<Camera> readCamera(const std::string& mav0, const std::string& camera) {
   try {
-    cv::FileStorage fs(mav0 + "/" + camera + "/sensor.yaml", cv::FileStorage::READ);
+    // EuRoC ships its sensor.yaml files without the "%YAML:1.0" line cv::FileStorage needs to
+    // read YAML: read the text and put the line in front when it is missing.
+    std::ifstream in(mav0 + "/" + camera + "/sensor.yaml");
+    if (!in) {
+      return std::nullopt;
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string yaml = text.str();
+    if (yaml.rfind("%YAML", 0) != 0) {
+      yaml = "%YAML:1.0\n" + yaml;
+    }
+    cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened()) {
       return std::nullopt;
     }
@@ -148,6 +160,36 @@ std::optional<cv::Matx44d> Trajectory::at(std::int64_t stamp, std::int64_t toler
     return std::nullopt;
   }
   return best->second;
+}
+
+std::optional<cv::Matx44d> Trajectory::interpolated(std::int64_t stamp, std::int64_t tolerance_ns) const {
+  const auto after = poses_.lower_bound(stamp);
+  if (after != poses_.end() && after->first == stamp) {
+    return after->second;
+  }
+  if (after == poses_.end() || after == poses_.begin()) {
+    return std::nullopt;
+  }
+  const auto before = std::prev(after);
+  if (stamp - before->first > tolerance_ns || after->first - stamp > tolerance_ns) {
+    return std::nullopt;
+  }
+  const double s = static_cast<double>(stamp - before->first) / static_cast<double>(after->first - before->first);
+  const cv::Matx33d R0 = before->second.get_minor<3, 3>(0, 0);
+  const cv::Matx33d R1 = after->second.get_minor<3, 3>(0, 0);
+  cv::Vec3d w;
+  cv::Rodrigues(R0.t() * R1, w);
+  cv::Matx33d dR;
+  cv::Rodrigues(cv::Vec3d(w * s), dR);
+  const cv::Matx33d R = R0 * dR;
+  cv::Matx44d T = cv::Matx44d::eye();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      T(r, c) = R(r, c);
+    }
+    T(r, 3) = (1.0 - s) * before->second(r, 3) + s * after->second(r, 3);
+  }
+  return T;
 }
 
 RelativePose groundTruthPose(const Camera& camera1, const cv::Matx44d& T_WB1, const Camera& camera2,

@@ -20,13 +20,14 @@
 #include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/evaluation/methods.h"
 #include "enhanced_orb/evaluation/metrics.h"
+#include "enhanced_orb/evaluation/sequence.h"
 
 namespace fs = std::filesystem;
 namespace ev = enhanced_orb::evaluation;
 
 namespace {
 
-const char* const kUsage = R"(usage: enhanced_orb_compare [--lighting DIR] [--euroc DIR] [options]
+const char* const kUsage = R"(usage: enhanced_orb_compare [--lighting DIR] [--euroc DIR] [--sequence DIR] [options]
 
 Compares the extractors at equal budgets (matching: mutual Hamming nearest neighbours).
   --lighting DIR     a folder of image-pair sets (each subfolder with a pairs.csv): correct
@@ -34,9 +35,13 @@ Compares the extractors at equal budgets (matching: mutual Hamming nearest neigh
   --euroc DIR        a EuRoC sequence: each frame against its degraded copies (identity ground
                      truth), and frame pairs with both frames degraded alike (epipolar ground
                      truth within 3 px; relative pose from the matches by RANSAC on E)
+  --sequence DIR     a moving sequence with ground-truth poses (EuRoC ASL folder, or KITTI odometry
+                     folder with image_0, calib.txt, poses.txt) under light that changes frame by
+                     frame: relative pose between frames t and t + gap (AUC at 5/10/20 degrees)
+                     and, with a second camera, stereo frame-to-frame tracking by PnP
 options:
-  --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv
-                     (default: results/compare)
+  --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv,
+                     sequence_pose.csv, sequence_tracking.csv (default: results/compare)
   --budgets LIST     feature budgets (default 500,1000,2000)
   --methods LIST     of default,stretch,paper,baseline,cv::ORB,CLAHE+cv::ORB (default: all)
   --set NAME=VALUE   a parameter of the default mode (repeatable; e.g. --set alpha=0.7)
@@ -48,6 +53,11 @@ options:
   --pair-every N     a frame pair starts every N-th frame (default 3)
   --stereo-every N   the stereo pose test at every N-th frame (default 1: each frame has its own
                      noise, so more pairs average the pose error over more of it)
+  --conditions LIST  --sequence light conditions (default: all of unchanged,dim,dark,dusk,
+                     lights_out,flicker,lamp,dip)
+  --gaps LIST        --sequence frame gaps (default 1,5,10 at 20 Hz; 1,3,5 at 10 Hz)
+  --sequence-every N --sequence: a relative-pose pair starts at every N-th frame (default 1)
+  --poses FILE       --sequence on KITTI: the poses file (default DIR/poses.txt)
   --threads N        worker threads (default 2; each extraction itself runs on one)
   -h, --help         this text
 Exit codes: 0 done, 1 an input could not be read, 2 bad arguments.
@@ -77,7 +87,10 @@ bool parsePositive(const std::string& text, int& out) {
 }
 
 struct Options {
-  std::string lighting, euroc, output = "results/compare", label = "default";
+  std::string lighting, euroc, sequence, poses, output = "results/compare", label = "default";
+  std::vector<std::string> conditions;
+  std::vector<int> gaps;
+  int sequence_every = 1;
   std::vector<int> budgets{500, 1000, 2000};
   std::vector<std::string> methods = ev::methodNames();
   std::vector<std::string> degradations;
@@ -329,6 +342,129 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
   pairs_file.commit();
 }
 
+// Real camera motion under light that changes frame by frame: every method on the same degraded
+// frames (each frame degraded once per condition), relative pose between frames and stereo tracking.
+void compareSequence(const Options& o, const std::vector<Runner>& all) {
+  ev::Sequence seq = o.poses.empty() ? ev::readSequence(o.sequence) : ev::readKittiSequence(o.sequence, o.poses);
+  const int n = static_cast<int>(seq.frames.size());
+  if (n < 2) {
+    throw ev::DatasetError(o.sequence + ": fewer than two frames with a ground-truth pose");
+  }
+  const std::vector<int> gaps = o.gaps.empty() ? ev::defaultGaps(seq.rate_hz) : o.gaps;
+  std::vector<ev::LightCondition> conditions = ev::lightConditions();
+  if (!o.conditions.empty()) {
+    conditions.clear();
+    for (const std::string& c : o.conditions) {
+      conditions.push_back({c});
+    }
+  }
+  const bool stereo = seq.right.has_value() && !seq.right_frames.empty();
+  std::cerr << "sequence " << seq.name << " (" << seq.format << "): " << n << " frames at " << seq.rate_hz
+            << " Hz, " << (stereo ? "stereo" : "monocular") << ", gaps";
+  for (int g : gaps) {
+    std::cerr << " " << g;
+  }
+  std::cerr << "\n";
+  std::vector<cv::Mat> left(n), right(stereo ? n : 0);
+  parallelFor(n, o.threads, [&](int, int i) {
+    left[i] = ev::readGray(seq.frames[i]);
+    if (stereo) {
+      right[i] = ev::readGray(seq.right_frames[i]);
+    }
+  });
+  for (int i = 0; i < n; ++i) {
+    if (left[i].empty() || (stereo && right[i].empty())) {
+      throw ev::DatasetError((left[i].empty() ? seq.frames[i] : seq.right_frames[i]) + ": cannot be decoded");
+    }
+  }
+  struct PosePair {
+    int first, gap;
+    ev::RelativePose truth;
+  };
+  std::vector<PosePair> pairs;
+  for (int g : gaps) {
+    for (int i = 0; i + g < n; i += o.sequence_every) {
+      const ev::RelativePose truth = ev::sequencePose(seq, i, i + g);
+      if (!ev::isStatic(truth)) {  // a pose from a pair that barely moved is not defined
+        pairs.push_back({i, g, truth});
+      }
+    }
+  }
+
+  ev::AtomicFile pose_file((fs::path(o.output) / "sequence_pose.csv").string());
+  std::ofstream pose_csv(pose_file.temporary());
+  pose_csv << "sequence,condition,method,budget,frame,gap,keypoints,matches,inliers,rotation_deg,translation_deg\n";
+  ev::AtomicFile track_file((fs::path(o.output) / "sequence_tracking.csv").string());
+  std::ofstream track_csv(track_file.temporary());
+  track_csv << "sequence,condition,method,budget,frame,map_points,matches,inliers,tracked,rotation_deg,"
+               "translation_m\n";
+  for (size_t c = 0; c < conditions.size(); ++c) {
+    const ev::LightCondition& light = conditions[c];
+    // Each frame degraded once, the same frames for every method; the right camera has its own noise.
+    std::vector<cv::Mat> dl(n), dr(stereo ? n : 0);
+    parallelFor(n, o.threads, [&](int, int i) {
+      dl[i] = light.apply(left[i], i, n, 100000ULL * c + i);
+      if (stereo) {
+        dr[i] = light.apply(right[i], i, n, 100000ULL * c + 50000ULL + i);
+      }
+    });
+    for (size_t m = 0; m < all.size(); ++m) {
+      const Runner& method = all[m];
+      std::vector<ev::Features> fl(n), fr(stereo ? n : 0);
+      parallelFor(n, o.threads, [&](int w, int i) {
+        fl[i] = method.run(w, dl[i]);
+        if (stereo) {
+          fr[i] = method.run(w, dr[i]);
+        }
+      });
+      const std::string prefix = seq.name + "," + light.name + "," + method.label + "," + std::to_string(method.budget);
+      std::vector<std::string> pose_rows(pairs.size());
+      parallelFor(static_cast<int>(pairs.size()), o.threads, [&](int, int k) {
+        const PosePair& p = pairs[k];
+        const ev::Features& a = fl[p.first];
+        const ev::Features& b = fl[p.first + p.gap];
+        const std::vector<cv::DMatch> matches = ev::mutualMatches(a.descriptors, b.descriptors);
+        std::vector<cv::Point2f> p1, p2;
+        for (const cv::DMatch& mt : matches) {
+          p1.push_back(a.keypoints[mt.queryIdx].pt);
+          p2.push_back(b.keypoints[mt.trainIdx].pt);
+        }
+        const ev::PoseEstimate pose = ev::estimatePose(seq.left, seq.left, p1, p2);
+        const ev::PoseError error = ev::poseError(pose, p.truth);
+        std::ostringstream row;
+        row << prefix << "," << p.first << "," << p.gap << "," << a.keypoints.size() << "," << matches.size() << ","
+            << pose.inliers << "," << error.rotation_deg << "," << error.translation_deg << "\n";
+        pose_rows[k] = row.str();
+      });
+      for (const std::string& r : pose_rows) {
+        pose_csv << r;
+      }
+      if (stereo) {
+        std::vector<std::string> track_rows(n - 1);
+        parallelFor(n - 1, o.threads, [&](int, int i) {
+          const ev::StereoMap map = ev::triangulateStereo(seq.left, *seq.right, fl[i].keypoints, fl[i].descriptors,
+                                                          fr[i].keypoints, fr[i].descriptors);
+          const ev::TrackResult t =
+              ev::trackFrame(map, seq.left, fl[i + 1].keypoints, fl[i + 1].descriptors, ev::sequencePose(seq, i, i + 1));
+          std::ostringstream row;
+          row << prefix << "," << i << "," << map.points.size() << "," << t.matches << "," << t.inliers << ","
+              << t.tracked() << "," << t.rotation_deg << "," << t.translation_m << "\n";
+          track_rows[i] = row.str();
+        });
+        for (const std::string& r : track_rows) {
+          track_csv << r;
+        }
+      }
+      progress("sequence " + light.name, static_cast<int>(c * all.size() + m) + 1,
+               static_cast<int>(conditions.size() * all.size()));
+    }
+  }
+  pose_csv.close();
+  track_csv.close();
+  pose_file.commit();
+  track_file.commit();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -350,6 +486,17 @@ int main(int argc, char** argv) {
       o.lighting = v;
     } else if (arg == "--euroc") {
       o.euroc = v;
+    } else if (arg == "--sequence") {
+      o.sequence = v;
+    } else if (arg == "--poses") {
+      o.poses = v;
+    } else if (arg == "--conditions") {
+      o.conditions = splitList(v);
+      for (const std::string& c : o.conditions) {
+        const std::vector<ev::LightCondition> known = ev::lightConditions();
+        ok = ok && std::any_of(known.begin(), known.end(), [&](const ev::LightCondition& k) { return k.name == c; });
+      }
+      ok = ok && !o.conditions.empty();
     } else if (arg == "--output") {
       o.output = v;
     } else if (arg == "--label") {
@@ -367,8 +514,8 @@ int main(int argc, char** argv) {
         std::cerr << "enhanced_orb_compare: --set " << v << ": " << error << "\n";
         return 2;
       }
-    } else if (arg == "--budgets" || arg == "--steps") {
-      std::vector<int>& list = arg == "--budgets" ? o.budgets : o.steps;
+    } else if (arg == "--budgets" || arg == "--steps" || arg == "--gaps") {
+      std::vector<int>& list = arg == "--budgets" ? o.budgets : arg == "--steps" ? o.steps : o.gaps;
       list.clear();
       for (const std::string& item : splitList(v)) {
         int n = 0;
@@ -376,11 +523,13 @@ int main(int argc, char** argv) {
         list.push_back(n);
       }
       ok = ok && !list.empty();
-    } else if (arg == "--every" || arg == "--pair-every" || arg == "--stereo-every" || arg == "--threads") {
-      int& target = arg == "--every"          ? o.every
-                    : arg == "--pair-every"   ? o.pair_every
-                    : arg == "--stereo-every" ? o.stereo_every
-                                              : o.threads;
+    } else if (arg == "--every" || arg == "--pair-every" || arg == "--stereo-every" || arg == "--threads" ||
+               arg == "--sequence-every") {
+      int& target = arg == "--every"            ? o.every
+                    : arg == "--pair-every"     ? o.pair_every
+                    : arg == "--stereo-every"   ? o.stereo_every
+                    : arg == "--sequence-every" ? o.sequence_every
+                                                : o.threads;
       ok = parsePositive(v, target) && target > 0;
     } else {
       std::cerr << "enhanced_orb_compare: unknown option " << arg << "\n\n" << kUsage;
@@ -391,8 +540,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (o.lighting.empty() && o.euroc.empty()) {
-    std::cerr << "enhanced_orb_compare: give --lighting DIR, --euroc DIR or both\n\n" << kUsage;
+  if (o.lighting.empty() && o.euroc.empty() && o.sequence.empty()) {
+    std::cerr << "enhanced_orb_compare: give --lighting DIR, --euroc DIR, --sequence DIR or several\n\n" << kUsage;
     return 2;
   }
   const std::vector<std::string> problems = enhanced_orb::validate(o.params);
@@ -409,6 +558,9 @@ int main(int argc, char** argv) {
     }
     if (!o.euroc.empty()) {
       compareEuroc(o, all);
+    }
+    if (!o.sequence.empty()) {
+      compareSequence(o, all);
     }
   } catch (const std::exception& e) {
     std::cerr << "\nenhanced_orb_compare: " << e.what() << "\n";

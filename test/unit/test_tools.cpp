@@ -4,8 +4,10 @@
 // half-written is left behind.
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -178,6 +180,59 @@ TEST_F(Tools, EvaluateSkipsOneBadFrameAndKeepsTheRest) {
     ++rows;
   }
   EXPECT_EQ(rows, 1 + 3 * 3);  // header, 3 frames x 3 methods
+}
+
+// The moving EuRoC excerpt as ETH ships it (sensor.yaml without a %YAML line): relative poses and
+// stereo tracking for every method asked, with errors that show the evaluation works on real frames.
+TEST_F(Tools, CompareRunsTheSequenceEvaluationOnEurocAsShipped) {
+  EXPECT_EQ(run(kCompare + " --sequence x --conditions eclipse --output " + quoted(dir_ / "none")).code, 2);
+  const std::string moving = ENHANCED_ORB_MOVING_DIR;
+  if (!fs::exists(moving + "/mav0/cam0/sensor.yaml")) {
+    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
+      FAIL() << moving << " is missing";
+    }
+    GTEST_SKIP() << moving << " is missing";
+  }
+  const fs::path out = dir_ / "seq";
+  const Outcome r = run(kCompare + " --sequence " + moving + " --methods default,ORB-SLAM --budgets 500 " +
+                        "--conditions unchanged --gaps 5 --sequence-every 10 --output " + quoted(out));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("no calibration"), std::string::npos) << r.output;
+  auto fields = [](const std::string& text) {
+    std::vector<std::string> f;
+    std::istringstream in(text);
+    for (std::string field; std::getline(in, field, ',');) {
+      f.push_back(field);
+    }
+    return f;
+  };
+  std::map<std::string, std::vector<double>> errors;
+  std::ifstream pose(out / "sequence_pose.csv");
+  std::string line;
+  std::getline(pose, line);
+  EXPECT_EQ(line, "sequence,condition,method,budget,frame,gap,keypoints,matches,inliers,rotation_deg,translation_deg");
+  while (std::getline(pose, line)) {
+    const std::vector<std::string> f = fields(line);
+    ASSERT_EQ(f.size(), 11u) << line;
+    errors[f[2]].push_back(std::max(std::stod(f[9]), std::stod(f[10])));
+  }
+  for (const std::string& method : {"default", "ORB-SLAM"}) {
+    std::vector<double>& e = errors[method];
+    ASSERT_GE(e.size(), 25u) << method;  // a pair every 10th of 295 frames
+    std::nth_element(e.begin(), e.begin() + e.size() / 2, e.end());
+    EXPECT_LT(e[e.size() / 2], 10.0) << method;  // median pose error of real moving frames
+  }
+  std::ifstream tracking(out / "sequence_tracking.csv");
+  int frames = 0, tracked = 0;
+  std::getline(tracking, line);
+  while (std::getline(tracking, line)) {
+    const std::vector<std::string> f = fields(line);
+    ASSERT_EQ(f.size(), 11u) << line;
+    ++frames;
+    tracked += f[2] == "default" && f[8] == "1";
+  }
+  EXPECT_EQ(frames, 2 * 299);
+  EXPECT_GT(tracked, 250);  // in unchanged light nearly every frame is tracked
 }
 
 TEST_F(Tools, CompareSamplesTheStereoPairsAsAsked) {

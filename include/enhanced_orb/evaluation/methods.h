@@ -1,5 +1,5 @@
 // The extractors compared at equal budgets: this package's default mode, the paper preset, the
-// original ORB (baseline), cv::ORB and CLAHE (3.0, 8x8) followed by cv::ORB.
+// original ORB (baseline), cv::ORB, CLAHE (3.0, 8x8) followed by cv::ORB, and ORB-SLAM's extractor.
 #ifndef ENHANCED_ORB_EVALUATION_METHODS_H
 #define ENHANCED_ORB_EVALUATION_METHODS_H
 
@@ -26,7 +26,8 @@ struct Method {
   std::function<Features(const cv::Mat& gray)> run;
 };
 
-// "default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (stretch and paper: the presets).
+// "default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (stretch and paper: the presets)
+// and "ORB-SLAM" (ORB-SLAM's extractor, orb_slam_style.h).
 std::vector<std::string> methodNames();
 
 // A method by name at a budget (cv::ORB asks for 10^6 features when budget is 0). `params` replaces

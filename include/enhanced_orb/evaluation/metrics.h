@@ -56,6 +56,9 @@ public:
   static std::optional<Trajectory> read(const std::string& mav0);
   // The pose nearest to `stamp`, if one lies within `tolerance_ns`.
   std::optional<cv::Matx44d> at(std::int64_t stamp, std::int64_t tolerance_ns = 5000000) const;
+  // The pose at `stamp` between the two poses around it (linear in position, along the geodesic in
+  // rotation), if both lie within `tolerance_ns`; the pose itself at a recorded stamp.
+  std::optional<cv::Matx44d> interpolated(std::int64_t stamp, std::int64_t tolerance_ns = 50000000) const;
 
 private:
   std::map<std::int64_t, cv::Matx44d> poses_;
