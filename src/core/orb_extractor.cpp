@@ -15,6 +15,7 @@
 
 #include "enhanced_orb/adaptive_threshold.h"
 #include "enhanced_orb/enhance.h"
+#include "enhanced_orb/noise.h"
 #include "enhanced_orb/rbrief.h"
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
@@ -584,6 +585,7 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   out.lambda = 0.0;
   out.poor_quality = false;
   out.inverted = false;
+  out.noise = 0.0;
   if (params_.enhance_enabled) {
     ownOrRelease(out.image);
     EnhanceResult enhanced = enhance(gray, params_.enhance, out.image, params_.orb.threads);
@@ -672,6 +674,9 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   }
   clock.lap();
 
+  // The frame's noise, where the candidates are chosen by it.
+  out.noise = orb.max_features > 0 && orb.noise_floor > 0.0 ? estimateNoise(out.image) : 0.0;
+  const double floor = orb.noise_floor * out.noise;
   if (orb.max_features > 0) {
     // Budget per level; what a level cannot use passes on to the next one.
     std::vector<int>& budgets = ws->budgets;
@@ -680,7 +685,14 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
     for (int level = 0; level < n_levels; ++level) {
       std::vector<cv::KeyPoint>& kps = ws->levels[level].keypoints;
       const int budget = budgets[level] + carry;
-      if (orb.candidate_ratio > 0.0) {
+      if (orb.noise_floor > 0.0) {
+        // The corners that stand noise_floor x the noise above it, and at least the budget's
+        // strongest: in a clean frame every real corner, in a noisy one the strongest only.
+        const auto above = std::count_if(kps.begin(), kps.end(), [floor](const cv::KeyPoint& kp) {
+          return kp.response >= floor;
+        });
+        keepStrongest(kps, static_cast<size_t>(std::max<std::ptrdiff_t>(above, budget)));
+      } else if (orb.candidate_ratio > 0.0) {
         keepStrongest(kps, static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
       }
       if (budget <= 0) {

@@ -102,6 +102,7 @@ std::vector<std::string> validate(const OrbParams& p) {
   checkRange(out, "n_levels", p.n_levels, 1, 16);
   checkRange(out, "scale_factor", p.scale_factor, 1.01, 2.0);
   checkRange(out, "candidate_ratio", p.candidate_ratio, 0.0, 100.0);
+  checkRange(out, "noise_floor", p.noise_floor, 0.0, 50.0);
   checkRange(out, "threads", p.threads, 1, 64);
   return out;
 }
@@ -195,6 +196,7 @@ const std::vector<Field>& fields() {
       number("fast_threshold", [](Params& p) -> int& { return p.orb.fast_threshold; }),
       number("max_features", [](Params& p) -> int& { return p.orb.max_features; }),
       number("candidate_ratio", [](Params& p) -> double& { return p.orb.candidate_ratio; }),
+      number("noise_floor", [](Params& p) -> double& { return p.orb.noise_floor; }),
       number("n_levels", [](Params& p) -> int& { return p.orb.n_levels; }),
       number("scale_factor", [](Params& p) -> double& { return p.orb.scale_factor; }),
       number("threads", [](Params& p) -> int& { return p.orb.threads; }),
@@ -255,6 +257,9 @@ std::vector<std::string> inactiveParameters(const Params& p) {
   }
   if (p.orb.max_features == 0) {
     out.push_back("candidate_ratio: only used with a budget (max_features > 0)");
+    out.push_back("noise_floor: only used with a budget (max_features > 0)");
+  } else if (p.orb.noise_floor > 0.0) {
+    out.push_back("candidate_ratio: not used when noise_floor > 0");
   }
   return out;
 }

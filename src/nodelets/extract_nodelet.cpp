@@ -55,6 +55,7 @@ private:
     p.orb.fast_threshold = config.fast_threshold;
     p.orb.max_features = config.max_features;
     p.orb.candidate_ratio = config.candidate_ratio;
+    p.orb.noise_floor = config.noise_floor;
     p.orb.n_levels = config.n_levels;
     p.orb.scale_factor = config.scale_factor;
     p.orb.threads = config.threads;

@@ -47,7 +47,7 @@ options:
                          nodelets), read from the file header before decoding where the format allows
   -h, --help             this text
 parameters (README "Parameters" gives each one's meaning, default and range):
-  --max-features N  --candidate-ratio X  --n-levels N  --scale-factor X
+  --max-features N  --candidate-ratio X  --noise-floor X  --n-levels N  --scale-factor X
   --threads N (threads of one extraction, default 1 so that timings compare; results are the same)
   --tone-curve equalize|gamma|stretch  --alpha X  --tau X  --beta X  --sharpening X
   --blur-ksize N  --blur-sigma X  --gamma-mode auto|always|never  --std-threshold X

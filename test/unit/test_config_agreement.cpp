@@ -60,6 +60,7 @@ TEST(ConfigAgreement, ExtractDefaultsAreTheDefaultMode) {
   EXPECT_EQ(c.fast_threshold, p.orb.fast_threshold);
   EXPECT_EQ(c.max_features, p.orb.max_features);
   EXPECT_DOUBLE_EQ(c.candidate_ratio, p.orb.candidate_ratio);
+  EXPECT_DOUBLE_EQ(c.noise_floor, p.orb.noise_floor);
   EXPECT_EQ(c.n_levels, p.orb.n_levels);
   EXPECT_DOUBLE_EQ(c.scale_factor, p.orb.scale_factor);
   EXPECT_EQ(c.threads, p.orb.threads);
@@ -82,6 +83,7 @@ TEST(ConfigAgreement, RangesAreTheLibrarys) {
   expectSameRange("fast_threshold", xlo.fast_threshold, xhi.fast_threshold);
   expectSameRange("max_features", xlo.max_features, xhi.max_features);
   expectSameRange("candidate_ratio", xlo.candidate_ratio, xhi.candidate_ratio);
+  expectSameRange("noise_floor", xlo.noise_floor, xhi.noise_floor);
   expectSameRange("n_levels", xlo.n_levels, xhi.n_levels);
   expectSameRange("scale_factor", xlo.scale_factor, xhi.scale_factor);
   expectSameRange("threads", xlo.threads, xhi.threads);

@@ -368,3 +368,40 @@ TEST(Extractor, DefaultModeParametersEachChangeTheOutput) {
   cv::minMaxLoc(OrbExtractor(high).extract(dark).cell_thresholds, &lo);
   EXPECT_GE(lo, 40.0);
 }
+
+// noise_floor: the candidates are the corners above noise_floor x the frame's noise, and at least
+// the budget's strongest. A floor no corner reaches leaves the budget's strongest (candidate_ratio
+// 1); a floor every corner passes leaves all of them (candidate_ratio 0).
+TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
+  cv::Mat noisy = test::syntheticScene(cv::Size(640, 480), 300);
+  cv::Mat noise(noisy.size(), CV_16S);
+  cv::randn(noise, 0, 8);
+  noisy.convertTo(noisy, CV_16S);
+  cv::Mat(noisy + noise).convertTo(noisy, CV_8U);
+  auto run = [&](double ratio, double floor) {
+    Params p;
+    p.orb.candidate_ratio = ratio;
+    p.orb.noise_floor = floor;
+    return OrbExtractor(p).extract(noisy);
+  };
+  auto same = [](const Extraction& a, const Extraction& b) {
+    if (a.keypoints.size() != b.keypoints.size()) {
+      return false;
+    }
+    for (size_t i = 0; i < a.keypoints.size(); ++i) {
+      if (a.keypoints[i].pt != b.keypoints[i].pt || a.keypoints[i].octave != b.keypoints[i].octave) {
+        return false;
+      }
+    }
+    return cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING) == 0.0;
+  };
+  const Extraction off = run(1.5, 0.0);
+  EXPECT_EQ(off.noise, 0.0);  // not measured when not used
+  const Extraction high = run(1.5, 50.0);
+  EXPECT_GT(high.noise, 1.0);
+  EXPECT_TRUE(same(high, run(1.0, 0.0)));
+  EXPECT_FALSE(same(high, off));
+  EXPECT_TRUE(same(run(1.5, 1e-6), run(0.0, 0.0)));
+  // In between, more corners pass a lower floor: the selection changes with it.
+  EXPECT_FALSE(same(run(0.0, 4.0), run(0.0, 12.0)));
+}

@@ -293,3 +293,29 @@ TEST(Params, ParamTextReadsBackToTheSameValue) {
   }
   EXPECT_FALSE(paramText(Params(), "draw_grid"));
 }
+
+TEST(Params, NoiseFloorIsAParameterLikeTheOthers) {
+  Params p;
+  EXPECT_EQ(p.orb.noise_floor, 0.0);
+  EXPECT_EQ(setParam(p, "noise_floor", "8"), "");
+  EXPECT_DOUBLE_EQ(p.orb.noise_floor, 8.0);
+  EXPECT_EQ(paramText(p, "noise_floor").value_or(""), "8");
+  EXPECT_NE(setParam(p, "noise_floor", "loud"), "");
+  auto inactive = [](const Params& q, const std::string& prefix) {
+    for (const std::string& m : inactiveParameters(q)) {
+      if (m.rfind(prefix, 0) == 0) {
+        return true;
+      }
+    }
+    return false;
+  };
+  EXPECT_TRUE(inactive(p, "candidate_ratio: not used when noise_floor"));
+  p.orb.noise_floor = 51.0;
+  ASSERT_EQ(validate(p).size(), 1u);
+  EXPECT_NE(validate(p)[0].find("noise_floor"), std::string::npos);
+  p.orb.noise_floor = -1.0;
+  EXPECT_EQ(validate(p).size(), 1u);
+  p = Params();
+  p.orb.max_features = 0;
+  EXPECT_TRUE(inactive(p, "noise_floor: only used with a budget"));
+}
