@@ -3,14 +3,16 @@
 # equal-budget comparison (lighting pairs and EuRoC), the paper's evaluation (Tables 2-4,
 # Figures 6-7), the benchmarks and the nodelet chain's figures.
 #
-#   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR]]
-#   defaults ../shared/data/euroc/V1_01_easy_micro and ../shared/data/lighting
+#   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR [MOVING_SEQUENCE_DIR]]]
+#   defaults ../shared/data/euroc/V1_01_easy_micro, ../shared/data/lighting and
+#   ../shared/data/euroc/MH_01_easy_moving (a EuRoC ASL or KITTI odometry folder with ground truth)
 # With COMPARE_DIR set, the comparison's CSV files are kept there (scripts/compare_report.py
 # COMPARE_DIR docs/RESULTS.md then rewrites its section without running it again).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 EUROC=$(realpath "${1:-$ROOT/../shared/data/euroc/V1_01_easy_micro}")
 LIGHTING=$(realpath "${2:-$ROOT/../shared/data/lighting}")
+MOVING=$(realpath "${3:-$ROOT/../shared/data/euroc/MH_01_easy_moving}")
 OUT="$ROOT/docs/results"
 bash "$ROOT/scripts/setup.sh"
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
@@ -31,6 +33,9 @@ else
   KEEP_COMPARE=false
 fi
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --lighting "$LIGHTING" --euroc "$EUROC" --output "$COMPARE"
+
+echo "results: real camera motion on $MOVING (relative pose every third frame, stereo tracking every frame)"
+"$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --sequence "$MOVING" --sequence-every 3 --output "$COMPARE/sequence"
 
 echo "results: evaluation on $EUROC"
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_evaluate" --euroc "$EUROC" --output "$OUT" --every 19
@@ -68,4 +73,5 @@ python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline
 
 python3 "$ROOT/scripts/results.py" "$OUT"
 python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
+python3 "$ROOT/scripts/sequence_report.py" "$COMPARE/sequence" "$ROOT/docs/RESULTS.md"
 echo "results: done in $(( $(date +%s) - start )) s"

@@ -75,7 +75,8 @@ struct OrbParams {
   double candidate_ratio = 1.5;
   // > 0: at a budget, a level's spread selection draws from its corners whose FAST score is at
   // least noise_floor x the frame's noise (estimateNoise() of the image the corners are found on),
-  // and at least from its budget's strongest; candidate_ratio is then not used. 0: off. [0, 50]
+  // and at least from its budget's strongest; candidate_ratio is then not used. 0: off. With
+  // threshold_scale 0, the setting for relative pose on a moving camera (docs/RESULTS.md). [0, 50]
   double noise_floor = 0.0;
   int n_levels = 8;           // pyramid levels, [1, 16]
   double scale_factor = 1.2;  // pyramid scale between levels, [1.01, 2]

@@ -400,12 +400,17 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
                "translation_m\n";
   for (size_t c = 0; c < conditions.size(); ++c) {
     const ev::LightCondition& light = conditions[c];
-    // Each frame degraded once, the same frames for every method; the right camera has its own noise.
+    // Each frame degraded once, the same frames for every method; the right camera has its own
+    // noise. Seeds follow the condition's name, so a run of some conditions repeats a full run's.
+    std::uint64_t seed = 14695981039346656037ULL;  // FNV-1a of the name
+    for (char ch : light.name) {
+      seed = (seed ^ static_cast<unsigned char>(ch)) * 1099511628211ULL;
+    }
     std::vector<cv::Mat> dl(n), dr(stereo ? n : 0);
     parallelFor(n, o.threads, [&](int, int i) {
-      dl[i] = light.apply(left[i], i, n, 100000ULL * c + i);
+      dl[i] = light.apply(left[i], i, n, seed + 2ULL * i);
       if (stereo) {
-        dr[i] = light.apply(right[i], i, n, 100000ULL * c + 50000ULL + i);
+        dr[i] = light.apply(right[i], i, n, seed + 2ULL * i + 1);
       }
     });
     for (size_t m = 0; m < all.size(); ++m) {

@@ -268,6 +268,26 @@ inline void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& 
   }
 }
 
+// estimateNoise: the operator's response at every 4th row from the third on, |response| sorted,
+// the lower median / (0.6745 * 6).
+inline double noise(const cv::Mat& gray) {
+  if (gray.rows < 5 || gray.cols < 5) {
+    return 0.0;
+  }
+  cv::Mat response;
+  const cv::Mat kernel = (cv::Mat_<float>(5, 5) << 1, 0, -2, 0, 1, 0, 0, 0, 0, 0, -2, 0, 4, 0, -2, 0, 0, 0, 0, 0, 1,
+                          0, -2, 0, 1);
+  cv::filter2D(gray, response, CV_32F, kernel);
+  std::vector<float> values;
+  for (int y = 2; y + 2 < gray.rows; y += 4) {
+    for (int x = 2; x + 2 < gray.cols; ++x) {
+      values.push_back(std::abs(response.at<float>(y, x)));
+    }
+  }
+  std::sort(values.begin(), values.end());
+  return values[(values.size() - 1) / 2] / (0.6745 * 6.0);
+}
+
 // OrbExtractor::extract, step by step.
 inline Extraction extract(const cv::Mat& gray, const Params& params) {
   Extraction out;
@@ -305,7 +325,14 @@ inline Extraction extract(const cv::Mat& gray, const Params& params) {
     int carry = 0;
     for (int level = 0; level < n_levels; ++level) {
       const int budget = budgets[level] + carry;
-      if (orb.candidate_ratio > 0.0) {
+      if (orb.noise_floor > 0.0) {
+        const double floor = orb.noise_floor * reference::noise(out.image);
+        size_t above = 0;
+        for (const cv::KeyPoint& kp : level_keypoints[level]) {
+          above += kp.response >= floor;
+        }
+        reference::keepStrongest(level_keypoints[level], std::max(above, static_cast<size_t>(std::max(0, budget))));
+      } else if (orb.candidate_ratio > 0.0) {
         reference::keepStrongest(level_keypoints[level], static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
       }
       level_keypoints[level] =

@@ -105,6 +105,7 @@ TEST(CellThreshold, EquationsThirtyThreeAndThirtyFour) {
   cell.colRange(5, 10).setTo(200);
   ASSERT_EQ(otsuThreshold(cell), 50);
   ThresholdParams p;
+  p.threshold_scale = 0.3;                // the paper's a
   EXPECT_EQ(cellThreshold(cell, p), 45);  // I_mid = 200: 0.3 * 150
   p.c_min = 50;
   EXPECT_EQ(cellThreshold(cell, p), 50);  // truncated at c_min

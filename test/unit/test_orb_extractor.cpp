@@ -361,6 +361,7 @@ TEST(Extractor, DefaultModeParametersEachChangeTheOutput) {
   EXPECT_TRUE(differs("c_min", "80"));  // at a budget: once fewer corners than the candidates pass it
   EXPECT_TRUE(differs("threshold_scale", "1.5"));
   EXPECT_TRUE(differs("candidate_ratio", "0"));
+  EXPECT_TRUE(differs("noise_floor", "8"));
   // c_min lifts every threshold.
   Params high;
   high.threshold.c_min = 40;
@@ -380,6 +381,7 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
   cv::Mat(noisy + noise).convertTo(noisy, CV_8U);
   auto run = [&](double ratio, double floor) {
     Params p;
+    p.threshold.threshold_scale = 0.3;
     p.orb.candidate_ratio = ratio;
     p.orb.noise_floor = floor;
     return OrbExtractor(p).extract(noisy);
@@ -396,6 +398,7 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
     return cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING) == 0.0;
   };
   const Extraction off = run(1.5, 0.0);
+  EXPECT_EQ(OrbExtractor().extract(noisy).noise, 0.0);  // the default mode does not measure it
   EXPECT_EQ(off.noise, 0.0);  // not measured when not used
   const Extraction high = run(1.5, 50.0);
   EXPECT_GT(high.noise, 1.0);

@@ -116,6 +116,7 @@ TEST(Params, DefaultModeIsValidAndDiffersFromThePaperWhereDocumented) {
   EXPECT_DOUBLE_EQ(p.enhance.sharpening, -1.0);  // no unsharp mask: E = f + beta T_mask
   EXPECT_EQ(p.orb.max_features, 1000);
   EXPECT_GT(p.orb.candidate_ratio, 1.0);
+  EXPECT_DOUBLE_EQ(p.orb.noise_floor, 0.0);
   // The threshold stage is the paper's.
   EXPECT_EQ(p.threshold.c_min, Params::paper().threshold.c_min);
   EXPECT_EQ(p.threshold.grid_size, Params::paper().threshold.grid_size);
