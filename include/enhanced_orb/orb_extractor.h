@@ -48,7 +48,7 @@ struct Extraction {
   double lambda = 0.0;                    // eq 7 of the input (0 when enhancement is off)
   bool poor_quality = false;
   bool inverted = false;
-  double noise = 0.0;                     // estimateNoise() of `image` where noise_floor uses it, else 0
+  double noise = 0.0;  // estimateNoise() of `image` where noise_floor uses it, else 0
   StageTimings timings;
 };
 

@@ -19,8 +19,8 @@ double estimateNoise(const cv::Mat& gray, int row_step) {
     const std::uint8_t* b = gray.ptr<std::uint8_t>(y);
     const std::uint8_t* c = gray.ptr<std::uint8_t>(y + 2);
     for (int x = 2; x + 2 < gray.cols; ++x) {
-      const int r = a[x - 2] - 2 * a[x] + a[x + 2] - 2 * (b[x - 2] - 2 * b[x] + b[x + 2]) + c[x - 2] - 2 * c[x] +
-                    c[x + 2];
+      const int r =
+          a[x - 2] - 2 * a[x] + a[x + 2] - 2 * (b[x - 2] - 2 * b[x] + b[x + 2]) + c[x - 2] - 2 * c[x] + c[x + 2];
       ++histogram[std::abs(r)];
     }
     count += static_cast<std::uint64_t>(gray.cols - 4);

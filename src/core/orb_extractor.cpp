@@ -688,9 +688,8 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
       if (orb.noise_floor > 0.0) {
         // The corners that stand noise_floor x the noise above it, and at least the budget's
         // strongest: in a clean frame every real corner, in a noisy one the strongest only.
-        const auto above = std::count_if(kps.begin(), kps.end(), [floor](const cv::KeyPoint& kp) {
-          return kp.response >= floor;
-        });
+        const auto above =
+            std::count_if(kps.begin(), kps.end(), [floor](const cv::KeyPoint& kp) { return kp.response >= floor; });
         keepStrongest(kps, static_cast<size_t>(std::max<std::ptrdiff_t>(above, budget)));
       } else if (orb.candidate_ratio > 0.0) {
         keepStrongest(kps, static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));

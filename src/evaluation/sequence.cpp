@@ -127,9 +127,7 @@ Sequence readKittiSequence(const std::string& dir, const std::string& poses_file
   const cv::Matx33d K((*P0)(0, 0), 0, (*P0)(0, 2), 0, (*P0)(1, 1), (*P0)(1, 2), 0, 0, 1);
   // The body is the left camera; P1 = K [I | t] with t = (-fx * baseline, 0, 0) / fx.
   seq.left = Camera{K, {0, 0, 0, 0}, cv::Matx44d::eye()};
-  const std::string poses_path =
-      !poses_file.empty() ? poses_file
-                          : (root / "poses.txt").string();
+  const std::string poses_path = !poses_file.empty() ? poses_file : (root / "poses.txt").string();
   std::ifstream poses_in(poses_path);
   if (!poses_in) {
     fail(poses_path + ": does not exist (give the sequence's poses/NN.txt)");

@@ -359,8 +359,8 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
     }
   }
   const bool stereo = seq.right.has_value() && !seq.right_frames.empty();
-  std::cerr << "sequence " << seq.name << " (" << seq.format << "): " << n << " frames at " << seq.rate_hz
-            << " Hz, " << (stereo ? "stereo" : "monocular") << ", gaps";
+  std::cerr << "sequence " << seq.name << " (" << seq.format << "): " << n << " frames at " << seq.rate_hz << " Hz, "
+            << (stereo ? "stereo" : "monocular") << ", gaps";
   for (int g : gaps) {
     std::cerr << " " << g;
   }
@@ -449,8 +449,8 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
         parallelFor(n - 1, o.threads, [&](int, int i) {
           const ev::StereoMap map = ev::triangulateStereo(seq.left, *seq.right, fl[i].keypoints, fl[i].descriptors,
                                                           fr[i].keypoints, fr[i].descriptors);
-          const ev::TrackResult t =
-              ev::trackFrame(map, seq.left, fl[i + 1].keypoints, fl[i + 1].descriptors, ev::sequencePose(seq, i, i + 1));
+          const ev::TrackResult t = ev::trackFrame(map, seq.left, fl[i + 1].keypoints, fl[i + 1].descriptors,
+                                                   ev::sequencePose(seq, i, i + 1));
           std::ostringstream row;
           row << prefix << "," << i << "," << map.points.size() << "," << t.matches << "," << t.inliers << ","
               << t.tracked() << "," << t.rotation_deg << "," << t.translation_m << "\n";

@@ -275,8 +275,8 @@ inline double noise(const cv::Mat& gray) {
     return 0.0;
   }
   cv::Mat response;
-  const cv::Mat kernel = (cv::Mat_<float>(5, 5) << 1, 0, -2, 0, 1, 0, 0, 0, 0, 0, -2, 0, 4, 0, -2, 0, 0, 0, 0, 0, 1,
-                          0, -2, 0, 1);
+  const cv::Mat kernel =
+      (cv::Mat_<float>(5, 5) << 1, 0, -2, 0, 1, 0, 0, 0, 0, 0, -2, 0, 4, 0, -2, 0, 0, 0, 0, 0, 1, 0, -2, 0, 1);
   cv::filter2D(gray, response, CV_32F, kernel);
   std::vector<float> values;
   for (int y = 2; y + 2 < gray.rows; y += 4) {

@@ -399,7 +399,7 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
   };
   const Extraction off = run(1.5, 0.0);
   EXPECT_EQ(OrbExtractor().extract(noisy).noise, 0.0);  // the default mode does not measure it
-  EXPECT_EQ(off.noise, 0.0);  // not measured when not used
+  EXPECT_EQ(off.noise, 0.0);                            // not measured when not used
   const Extraction high = run(1.5, 50.0);
   EXPECT_GT(high.noise, 1.0);
   EXPECT_TRUE(same(high, run(1.0, 0.0)));

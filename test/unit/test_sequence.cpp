@@ -132,8 +132,7 @@ TEST(Sequence, EurocSequenceWithPosesAtTheFrameTimes) {
 
 TEST(Sequence, KittiSequenceWithItsBaseline) {
   TempDir dir;
-  write(dir.path / "calib.txt",
-        "P0: 700 0 600 0 0 700 180 0 0 0 1 0\nP1: 700 0 600 -378 0 700 180 0 0 0 1 0\n");
+  write(dir.path / "calib.txt", "P0: 700 0 600 0 0 700 180 0 0 0 1 0\nP1: 700 0 600 -378 0 700 180 0 0 0 1 0\n");
   std::string poses;
   for (int i = 0; i < 4; ++i) {
     poses += "1 0 0 0 0 1 0 0 0 0 1 " + std::to_string(0.8 * i) + "\n";
@@ -158,7 +157,9 @@ TEST(Sequence, KittiSequenceWithItsBaseline) {
 TEST(Sequence, LightConditionsOverASequence) {
   const cv::Mat frame(60, 80, CV_8U, cv::Scalar(160));
   const int n = 300;
-  auto mean = [&](const std::string& name, int i) { return cv::mean(ev::LightCondition{name}.apply(frame, i, n, 7))[0]; };
+  auto mean = [&](const std::string& name, int i) {
+    return cv::mean(ev::LightCondition{name}.apply(frame, i, n, 7))[0];
+  };
   EXPECT_EQ(mean("unchanged", 10), 160.0);
   EXPECT_NEAR(mean("dim", 10), 80.0, 2.0);  // x0.25, gain 2
   EXPECT_NEAR(mean("flicker", 11), 80.0, 2.0);
@@ -242,7 +243,7 @@ TEST(OrbSlamStyle, QuadtreeSpreadsTheBudgetAndKeepsEachNodesStrongest) {
   // The lone corners get nodes of their own (the strongest 20 alone would all be the cluster's);
   // the last split may leave two in one node.
   EXPECT_GE(spread, 10);
-  EXPECT_EQ(best, 199.0f);     // the cluster's node keeps its strongest
+  EXPECT_EQ(best, 199.0f);  // the cluster's node keeps its strongest
   EXPECT_TRUE(ev::distributeQuadtree(kps, cv::Rect2f(0, 0, 240, 200), 0).empty());
 }
 

@@ -19,14 +19,14 @@ namespace evaluation {
 
 // A sequence with a ground-truth pose for every frame kept: frames without one are dropped.
 struct Sequence {
-  std::string name;                // the folder's name
-  std::string format;              // "euroc" or "kitti"
-  double rate_hz = 20.0;           // frame rate
-  Camera left;                     // the camera of `frames`
-  std::optional<Camera> right;     // the second camera of a stereo rig (T_BS relative to the same body)
+  std::string name;                       // the folder's name
+  std::string format;                     // "euroc" or "kitti"
+  double rate_hz = 20.0;                  // frame rate
+  Camera left;                            // the camera of `frames`
+  std::optional<Camera> right;            // the second camera of a stereo rig (T_BS relative to the same body)
   std::vector<std::string> frames;        // left images
   std::vector<std::string> right_frames;  // right images at the same times (empty: monocular)
-  std::vector<cv::Matx44d> poses;  // T_WB of each frame (the body; camera pose = T_WB * left.T_BS)
+  std::vector<cv::Matx44d> poses;         // T_WB of each frame (the body; camera pose = T_WB * left.T_BS)
 };
 
 // A EuRoC ASL folder (DIR or DIR/mav0) with cam0 (and cam1) sensor.yaml, data.csv and
@@ -95,9 +95,9 @@ constexpr double kTrackingTranslationM = 0.03;
 struct TrackResult {
   int matches = 0;
   int inliers = 0;
-  bool solved = false;                       // PnP found a motion
-  double rotation_deg = 180.0;               // error against the truth (180 when not solved)
-  double translation_m = 1e9;                // error against the truth (1e9 when not solved)
+  bool solved = false;          // PnP found a motion
+  double rotation_deg = 180.0;  // error against the truth (180 when not solved)
+  double translation_m = 1e9;   // error against the truth (1e9 when not solved)
   bool tracked() const {
     return solved && inliers >= kMinTrackingInliers && rotation_deg <= kTrackingRotationDeg &&
            translation_m <= kTrackingTranslationM;
