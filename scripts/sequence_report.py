@@ -3,7 +3,9 @@
 the real-camera-motion section of docs/RESULTS.md (between the sequence:begin and sequence:end
 markers) and its plot docs/results/sequence.png.
 
-    python3 scripts/sequence_report.py RESULTS_DIR [docs/RESULTS.md]
+    python3 scripts/sequence_report.py RESULTS_DIR [RESULTS_DIR ...] [docs/RESULTS.md]
+
+Several folders (runs of the same frames under other labels) are read as one.
 """
 import collections
 import csv
@@ -16,6 +18,8 @@ from compare_report import auc, table
 
 ORDER = ["default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]
 RIVALS = ["baseline", "paper", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]  # what the default mode must match
+COLOURS = {"default": "tab:red", "motion": "darkred", "stretch": "tab:pink", "paper": "tab:orange",
+           "baseline": "tab:blue", "cv::ORB": "tab:gray", "CLAHE+cv::ORB": "tab:purple", "ORB-SLAM": "tab:green"}
 CONDITIONS = ["unchanged", "dim", "dark", "dusk", "lights_out", "flicker", "lamp", "dip"]
 LIGHT = {
     "unchanged": "as recorded",
@@ -46,13 +50,28 @@ the sensor model (shot noise, read noise, gain) and every method sees that frame
 - Rivals: the original ORB (`baseline`), the `paper` preset, cv::ORB, CLAHE (3, 8x8) + cv::ORB and
   ORB-SLAM's extractor (`ORB-SLAM`: FAST 20 in ~30 px cells falling back to 7, quadtree
   distribution, 8 levels of 1.2; written from its published description,
-  `include/enhanced_orb/evaluation/orb_slam_style.h`). The `stretch` preset is shown beside them.
+  `include/enhanced_orb/evaluation/orb_slam_style.h`). The `stretch` preset is shown beside them,
+  and **motion**, the setting for a moving camera (the default mode with `noise_floor: 8` and
+  `threshold_scale: 0`, README "Which mode to use"), run as `--methods default --label motion
+  --set noise_floor=8 --set threshold_scale=0`.
 
 Light conditions: {conditions}.
 
-Reproduce: `devel/lib/enhanced_orb/enhanced_orb_compare --sequence
-../shared/data/euroc/MH_01_easy_moving --output /tmp/seq && python3 scripts/sequence_report.py
-/tmp/seq docs/RESULTS.md`.
+Relative pose is measured from every third frame (`--sequence-every 3`: {pairs} pairs per method
+and condition), tracking at every frame; each number is one run of one noise draw per frame, and
+another draw moved a single AUC by up to about 0.04 (every method sees the same draw, so the
+ratios move less).
+
+Reproduce (about 30 minutes here at one budget):
+
+```bash
+devel/lib/enhanced_orb/enhanced_orb_compare --sequence ../shared/data/euroc/MH_01_easy_moving \\
+  --budgets 1000 --sequence-every 3 --output /tmp/seq
+devel/lib/enhanced_orb/enhanced_orb_compare --sequence ../shared/data/euroc/MH_01_easy_moving \\
+  --budgets 1000 --sequence-every 3 --methods default --label motion --set noise_floor=8 \\
+  --set threshold_scale=0 --output /tmp/seq_motion
+python3 scripts/sequence_report.py /tmp/seq /tmp/seq_motion docs/RESULTS.md
+```
 """
 
 
@@ -70,13 +89,17 @@ def median_error(values):
 
 
 def main():
-    src = sys.argv[1]
-    doc = sys.argv[2] if len(sys.argv) > 2 else os.path.join(os.path.dirname(__file__), "..", "docs", "RESULTS.md")
-    pose_rows = list(csv.DictReader(open(os.path.join(src, "sequence_pose.csv"))))
-    track_path = os.path.join(src, "sequence_tracking.csv")
-    track_rows = list(csv.DictReader(open(track_path))) if os.path.exists(track_path) else []
+    args = sys.argv[1:]
+    doc = args.pop() if len(args) > 1 and args[-1].endswith(".md") else \
+        os.path.join(os.path.dirname(__file__), "..", "docs", "RESULTS.md")
+    pose_rows, track_rows = [], []
+    for src in args:
+        pose_rows += list(csv.DictReader(open(os.path.join(src, "sequence_pose.csv"))))
+        track_path = os.path.join(src, "sequence_tracking.csv")
+        if os.path.exists(track_path):
+            track_rows += list(csv.DictReader(open(track_path)))
     if not pose_rows:
-        sys.exit("sequence_report: no rows in " + src)
+        sys.exit("sequence_report: no rows in " + " ".join(args))
 
     errors = collections.defaultdict(list)  # (condition, method, budget[, gap]) -> errors
     for r in pose_rows:
@@ -113,7 +136,9 @@ def main():
         v = tracked.get((cond, m, b), [])
         return sum(v) / len(v) if v else 0.0
 
-    out = [INTRO.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)),
+    pairs = len([r for r in pose_rows if r["method"] == "default" and r["condition"] == pose_rows[0]["condition"]
+                 and int(r["budget"]) == int(pose_rows[0]["budget"])])
+    out = [INTRO.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)), pairs=pairs,
                         conditions="; ".join("`%s` %s" % (c, LIGHT.get(c, "")) for c in conditions))]
 
     # The verdict at every budget: the default mode against the best rival, both measures.
@@ -180,7 +205,7 @@ def plot(conditions, methods, budget, a, trk, path):
         for i, m in enumerate(methods):
             xs = [k + (i - (len(methods) - 1) / 2) * width for k in range(len(conditions))]
             ax.bar(xs, [f(c, m) for c in conditions], width, label=m,
-                   color={"default": "tab:red", "noise_floor": "darkred"}.get(m))
+                   color=COLOURS.get(m))
         ax.set_xticks(range(len(conditions)))
         ax.set_xticklabels(conditions)
         ax.set_ylabel(title)
