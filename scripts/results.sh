@@ -41,9 +41,7 @@ for run in "1000 3" "500 6" "2000 6"; do
   read -r budget every <<<"$run"
   "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --sequence "$MOVING" --budgets "$budget" --sequence-every "$every" \
     --output "$COMPARE/sequence_$budget"
-  "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --sequence "$MOVING" --budgets "$budget" --sequence-every "$every" \
-    --methods default --label motion --set noise_floor=8 --set threshold_scale=0 --output "$COMPARE/motion_$budget"
-  SEQUENCES+=("$COMPARE/sequence_$budget" "$COMPARE/motion_$budget")
+  SEQUENCES+=("$COMPARE/sequence_$budget")
 done
 
 echo "results: evaluation on $EUROC"

@@ -35,6 +35,7 @@ enum class Preset {
   kDefault,  // the default mode (the member initialisers)
   kPaper,    // Dai & Wu's method as published (ALGORITHM.md)
   kStretch,  // the default mode with the raw tone order: well-exposed scenes whose light changes locally
+  kMotion,   // the default mode with its candidates chosen by the frame's noise: a moving camera
 };
 
 // How the FAST threshold of each grid cell is chosen.
@@ -100,6 +101,10 @@ struct Params {
   // only stretched linearly and each level keeps its strongest corners, so the ranking is the
   // camera's own. For well-exposed scenes whose light changes inside the frame (sun and shadow).
   static Params stretch();
+  // The default mode with noise_floor 8 and threshold_scale 0: each level's budget spread over its
+  // corners that stand out of the frame's noise, every cell at c_min. For a moving camera (relative
+  // pose, tracking); docs/RESULTS.md, "Real camera motion".
+  static Params motion();
   static Params preset(Preset preset);
 };
 
@@ -136,7 +141,7 @@ const char* toString(Preset preset);
 bool parseGammaMode(const std::string& name, GammaMode& out);
 bool parseThresholdMode(const std::string& name, ThresholdMode& out);
 bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize", "stretch"
-bool parsePreset(const std::string& name, Preset& out);        // "default", "paper", "stretch"
+bool parsePreset(const std::string& name, Preset& out);        // "default", "paper", "stretch", "motion"
 // The names each parser reads, for messages: "default, paper or stretch".
 std::string toneCurveNames();
 std::string presetNames();

@@ -47,8 +47,17 @@ Params Params::stretch() {
   return p;
 }
 
+Params Params::motion() {
+  Params p;
+  p.threshold.threshold_scale = 0.0;
+  p.orb.noise_floor = 8.0;
+  return p;
+}
+
 Params Params::preset(Preset preset) {
   switch (preset) {
+    case Preset::kMotion:
+      return motion();
     case Preset::kPaper:
       return paper();
     case Preset::kStretch:
@@ -283,8 +292,10 @@ struct Named {
 };
 constexpr Named<ToneCurve> kToneCurves[] = {
     {ToneCurve::kGamma, "gamma"}, {ToneCurve::kEqualize, "equalize"}, {ToneCurve::kStretch, "stretch"}};
-constexpr Named<Preset> kPresets[] = {
-    {Preset::kDefault, "default"}, {Preset::kPaper, "paper"}, {Preset::kStretch, "stretch"}};
+constexpr Named<Preset> kPresets[] = {{Preset::kDefault, "default"},
+                                      {Preset::kPaper, "paper"},
+                                      {Preset::kStretch, "stretch"},
+                                      {Preset::kMotion, "motion"}};
 constexpr Named<GammaMode> kGammaModes[] = {
     {GammaMode::kAuto, "auto"}, {GammaMode::kAlways, "always"}, {GammaMode::kNever, "never"}};
 constexpr Named<ThresholdMode> kThresholdModes[] = {{ThresholdMode::kAdaptive, "adaptive"},

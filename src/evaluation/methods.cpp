@@ -21,7 +21,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 std::vector<std::string> methodNames() {
-  return {"default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"};
+  return {"default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"};
 }
 
 Method makeMethod(const std::string& name, int budget, const Params& params) {

@@ -86,13 +86,10 @@ struct Mode {
 };
 
 std::vector<Mode> modes() {
-  Params noise_floor;  // the setting for a moving camera (docs/RESULTS.md)
-  noise_floor.orb.noise_floor = 8.0;
-  noise_floor.threshold.threshold_scale = 0.0;
   return {{"default", Params()},
           {"paper", Params::paper()},
           {"baseline", Params::baseline()},
-          {"noise_floor 8", noise_floor}};
+          {"motion", Params::motion()}};
 }
 
 }  // namespace

@@ -169,7 +169,7 @@ TEST(Params, SetParamByNameParsesWholeValuesOnly) {
 }
 
 TEST(Params, NamesRoundTrip) {
-  for (Preset preset : {Preset::kDefault, Preset::kPaper, Preset::kStretch}) {
+  for (Preset preset : {Preset::kDefault, Preset::kPaper, Preset::kStretch, Preset::kMotion}) {
     Preset parsed = Preset::kDefault;
     ASSERT_TRUE(parsePreset(toString(preset), parsed));
     EXPECT_EQ(parsed, preset);
@@ -194,7 +194,7 @@ TEST(Params, NamesRoundTrip) {
     return out;
   };
   const std::vector<std::string> presets = names(presetNames());
-  ASSERT_EQ(presets.size(), 3u) << presetNames();
+  ASSERT_EQ(presets.size(), 4u) << presetNames();
   for (const std::string& name : presets) {
     Preset parsed;
     EXPECT_TRUE(parsePreset(name, parsed)) << name;
@@ -319,4 +319,22 @@ TEST(Params, NoiseFloorIsAParameterLikeTheOthers) {
   p = Params();
   p.orb.max_features = 0;
   EXPECT_TRUE(inactive(p, "noise_floor: only used with a budget"));
+}
+
+TEST(Params, MotionPresetIsTheDefaultModeWithTheNoiseFloor) {
+  const Params m = Params::preset(Preset::kMotion);
+  EXPECT_TRUE(validate(m).empty()) << joinMessages(validate(m));
+  EXPECT_DOUBLE_EQ(m.orb.noise_floor, 8.0);
+  EXPECT_DOUBLE_EQ(m.threshold.threshold_scale, 0.0);
+  Preset parsed = Preset::kDefault;
+  EXPECT_TRUE(parsePreset("motion", parsed));
+  EXPECT_EQ(parsed, Preset::kMotion);
+  Params d;
+  d.orb.noise_floor = m.orb.noise_floor;
+  d.threshold.threshold_scale = m.threshold.threshold_scale;
+  for (const char* name :
+       {"tone_curve", "alpha", "tau", "beta", "sharpening", "blur_ksize", "blur_sigma", "gamma_mode", "grid_size",
+        "c_min", "threshold_mode", "max_features", "candidate_ratio", "n_levels", "scale_factor"}) {
+    EXPECT_EQ(paramText(m, name), paramText(d, name)) << name;
+  }
 }

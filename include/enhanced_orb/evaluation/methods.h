@@ -26,7 +26,8 @@ struct Method {
   std::function<Features(const cv::Mat& gray)> run;
 };
 
-// "default", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (stretch and paper: the presets)
+// "default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (motion, stretch and
+// paper: the presets)
 // and "ORB-SLAM" (ORB-SLAM's extractor, orb_slam_style.h).
 std::vector<std::string> methodNames();
 
