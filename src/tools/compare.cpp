@@ -497,8 +497,8 @@ int main(int argc, char** argv) {
       o.poses = v;
     } else if (arg == "--conditions") {
       o.conditions = splitList(v);
+      const std::vector<ev::LightCondition> known = ev::lightConditions();
       for (const std::string& c : o.conditions) {
-        const std::vector<ev::LightCondition> known = ev::lightConditions();
         ok = ok && std::any_of(known.begin(), known.end(), [&](const ev::LightCondition& k) { return k.name == c; });
       }
       ok = ok && !o.conditions.empty();
