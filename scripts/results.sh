@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) from the shared data: the
 # equal-budget comparison (lighting pairs and EuRoC), the paper's evaluation (Tables 2-4,
-# Figures 6-7), the benchmarks and the nodelet chain's figures.
+# Figures 6-7), the benchmarks, the nodelet chain's figures and the aarch64 test run.
 #
 #   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR [MOVING_SEQUENCE_DIR]]]
 #   defaults ../shared/data/euroc/V1_01_easy_micro, ../shared/data/lighting and
@@ -64,6 +64,9 @@ callgrind_annotate --inclusive=yes "$PROFILE/callgrind.out" 2>/dev/null \
   | sed -E 's/\?\?\?://; s/ \[[^]]*\]$//; s/\(cv::[^)]*\)|\(std::[^)]*\)|\([^()%]*\)//g; s/ const$//' >"$OUT/callgrind.txt"
 rm -rf "$PROFILE"
 
+echo "results: the ROS-free gtests cross-built for aarch64, under qemu (about 10 minutes)"
+bash "$ROOT/scripts/aarch64.sh" "$ROOT/build_aarch64/test_results" || echo "results: some aarch64 tests failed"
+
 echo "results: the nodelet chain"
 BAG=$(mktemp -d)/euroc.bag
 "$ROOT/devel/lib/enhanced_orb/euroc_to_bag" "$EUROC" "$BAG" >/dev/null
@@ -81,4 +84,5 @@ python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline
 python3 "$ROOT/scripts/results.py" "$OUT"
 python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
 python3 "$ROOT/scripts/sequence_report.py" "${SEQUENCES[@]}" "$ROOT/docs/RESULTS.md"
+python3 "$ROOT/scripts/aarch64_report.py" "$ROOT/build_aarch64/test_results" "$ROOT/docs/RESULTS.md"
 echo "results: done in $(( $(date +%s) - start )) s"

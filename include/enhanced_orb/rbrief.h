@@ -10,6 +10,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/simd.h"
+
 namespace enhanced_orb {
 
 // One test: bit = I(x1, y1) < I(x2, y2), offsets from the keypoint before rotation.
@@ -23,6 +25,23 @@ struct BriefTest {
 // std::runtime_error when what is read off does not reproduce cv::ORB's descriptors.
 const std::array<BriefTest, 256>& orbTests();
 
+// How the rotation of a test point (x, y) by an angle of cosine a and sine b rounds, in single
+// precision: x a - y b and x b + y a with each product rounded (kNone), or with the first or the
+// second product fused into the sum (one rounding), as a compiler contracts them where the CPU has
+// fused multiply-add: Debian's arm64 OpenCV is built so, its x86-64 one is not. At an exact .5 tie
+// the rounded point then moves by a pixel, and one bit of the descriptor may change.
+enum class Fusion { kNone, kFirst, kSecond };
+struct RotationRounding {
+  Fusion x = Fusion::kNone;  // x a - y b: kFirst is fma(x, a, -(y b)), kSecond fma(-y, b, x a)
+  Fusion y = Fusion::kNone;  // x b + y a: kFirst is fma(x, b, y a), kSecond fma(y, a, x b)
+};
+bool operator==(const RotationRounding& l, const RotationRounding& r);
+
+// The rounding the installed cv::ORB uses, found the first time it is needed (with orbTests()): on
+// keypoints whose angles put test points at rounding ties, the one of the five roundings whose
+// descriptors equal cv::ORB's. Throws std::runtime_error when none does.
+RotationRounding orbRotationRounding();
+
 // What smoothForDescription reuses from call to call.
 struct SmoothingBuffers {
   cv::Mat bordered;         // the level with a 3-pixel reflect-101 border
@@ -30,15 +49,20 @@ struct SmoothingBuffers {
 };
 
 // cv::ORB's smoothing before description, to the bit: a 7x7 Gaussian, sigma 2, of the level as a
-// view with a reflect-101 border. At the AVX2 level this project's kernels compute it
-// (kernels/pyramid_rows.h) when a check made once finds that they reproduce the installed
-// OpenCV's; otherwise cv::GaussianBlur does.
+// view with a reflect-101 border. At the AVX2 level (x86-64) and the NEON level (aarch64) this
+// project's kernels compute it (kernels/pyramid_rows.h) when a check made once finds that they
+// reproduce the installed OpenCV's; otherwise cv::GaussianBlur does.
 void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::Mat& smoothed);
+// Whether smoothForDescription runs this project's kernels at `level` (else cv::GaussianBlur).
+bool smoothsWithKernels(SimdLevel level);
 
 // Writes the 32-byte descriptor of each keypoint (level coordinates, integer positions, angle in
 // degrees) to rows first_row.. of `descriptors` (CV_8U, 32 columns), reading `smoothed`. Every
-// keypoint must lie at least 19 pixels inside the level.
+// keypoint must lie at least 19 pixels inside the level. The test points rotate as in
+// orbRotationRounding(), or as `rounding` says.
 void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors, int first_row);
+void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors, int first_row,
+              RotationRounding rounding);
 
 }  // namespace enhanced_orb
 

@@ -96,8 +96,8 @@ std::array<BriefTest, 256> probeTests() {
   return tests;
 }
 
-// Whether `tests` give cv::ORB's descriptors on a textured image, at every angle.
-void verify() {
+// Whether the tests and the rounding give cv::ORB's descriptors on a textured image, at every angle.
+void verify(RotationRounding rounding) {
   cv::Mat image(160, 160, CV_8UC1);
   cv::RNG rng(12345);
   rng.fill(image, cv::RNG::UNIFORM, 0, 256);
@@ -114,13 +114,16 @@ void verify() {
   cv::Mat smoothed;
   smoothForDescription(image, buffers, smoothed);
   cv::Mat ours(static_cast<int>(keypoints.size()), 32, CV_8UC1);
-  describe(smoothed, keypoints, ours, 0);
+  describe(smoothed, keypoints, ours, 0, rounding);
   if (theirs_kps.size() != keypoints.size() || cv::norm(ours, theirs, cv::NORM_HAMMING) != 0) {
     throw std::runtime_error("rBRIEF: the tests read off cv::ORB do not reproduce its descriptors");
   }
 }
 
 const std::array<BriefTest, 256>* g_tests = nullptr;
+RotationRounding g_rounding;
+
+RotationRounding findRotationRounding();
 
 }  // namespace
 
@@ -130,9 +133,15 @@ const std::array<BriefTest, 256>& orbTests() {
   std::call_once(once, [] {
     tests = probeTests();
     g_tests = &tests;
-    verify();
+    g_rounding = findRotationRounding();
+    verify(g_rounding);
   });
   return tests;
+}
+
+RotationRounding orbRotationRounding() {
+  orbTests();
+  return g_rounding;
 }
 
 namespace {
@@ -202,11 +211,15 @@ bool kernelsMatchOpenCv() {
 
 }  // namespace
 
+bool smoothsWithKernels(SimdLevel level) {
+  return kernels::hasVectorGaussianKernels(level) && kernelsMatchOpenCv();
+}
+
 void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::Mat& smoothed) {
   constexpr int r = kSmoothingRadius;
   cv::copyMakeBorder(level, buffers.bordered, r, r, r, r, cv::BORDER_REFLECT_101);
   const SimdLevel simd = activeSimdLevel();
-  if (simd >= SimdLevel::kAvx2 && kernelsMatchOpenCv()) {
+  if (smoothsWithKernels(simd)) {
     kernelSmoothing(buffers.bordered, level.size(), simd, buffers.rows, smoothed);
   } else {
     openCvSmoothing(buffers.bordered, level.size(), smoothed);
@@ -243,24 +256,180 @@ const TestPoints& testPoints(const std::array<BriefTest, 256>& tests) {
 
 }  // namespace
 
+bool operator==(const RotationRounding& l, const RotationRounding& r) {
+  return l.x == r.x && l.y == r.y;
+}
+
+namespace {
+
+// x a - y b and x b + y a as `kX` and `kY` round them (std::fma: one rounding; the build contracts
+// nothing else).
+template <Fusion kX>
+inline float rotatedX(float x, float y, float a, float b) {
+  if constexpr (kX == Fusion::kNone) {
+    return x * a - y * b;
+  } else if constexpr (kX == Fusion::kFirst) {
+    return std::fma(x, a, -(y * b));
+  } else {
+    return std::fma(-y, b, x * a);
+  }
+}
+
+template <Fusion kY>
+inline float rotatedY(float x, float y, float a, float b) {
+  if constexpr (kY == Fusion::kNone) {
+    return x * b + y * a;
+  } else if constexpr (kY == Fusion::kFirst) {
+    return std::fma(x, b, y * a);
+  } else {
+    return std::fma(y, a, x * b);
+  }
+}
+
+// Each test point's offset from the centre once rotated and rounded to the nearest pixel; the
+// loop is vectorised.
+template <Fusion kX, Fusion kY>
+void rotatedOffsets(const TestPoints& points, float a, float b, int step, int* offset) {
+  for (int j = 0; j < 512; ++j) {
+    const float ix = roundToInteger(rotatedX<kX>(points.x[j], points.y[j], a, b));
+    const float iy = roundToInteger(rotatedY<kY>(points.x[j], points.y[j], a, b));
+    offset[j] = static_cast<int>(iy) * step + static_cast<int>(ix);
+  }
+}
+
+using OffsetsFunction = void (*)(const TestPoints&, float, float, int, int*);
+
+template <Fusion kX>
+OffsetsFunction offsetsFunction(Fusion y) {
+  switch (y) {
+    case Fusion::kFirst:
+      return rotatedOffsets<kX, Fusion::kFirst>;
+    case Fusion::kSecond:
+      return rotatedOffsets<kX, Fusion::kSecond>;
+    case Fusion::kNone:
+      break;
+  }
+  return rotatedOffsets<kX, Fusion::kNone>;
+}
+
+OffsetsFunction offsetsFunction(RotationRounding rounding) {
+  switch (rounding.x) {
+    case Fusion::kFirst:
+      return offsetsFunction<Fusion::kFirst>(rounding.y);
+    case Fusion::kSecond:
+      return offsetsFunction<Fusion::kSecond>(rounding.y);
+    case Fusion::kNone:
+      break;
+  }
+  return offsetsFunction<Fusion::kNone>(rounding.y);
+}
+
+// The angle's cosine and sine as cv::ORB computes them: single precision throughout.
+inline void cosineAndSine(float degrees, float& a, float& b) {
+  const float angle = degrees * static_cast<float>(CV_PI / 180.f);
+  a = std::cos(angle);
+  b = std::sin(angle);
+}
+
+// Whether the five roundings put test point (x, y) on one pixel at this angle.
+bool roundingsAgree(float x, float y, float a, float b) {
+  const float rx = roundToInteger(rotatedX<Fusion::kNone>(x, y, a, b));
+  const float ry = roundToInteger(rotatedY<Fusion::kNone>(x, y, a, b));
+  return rx == roundToInteger(rotatedX<Fusion::kFirst>(x, y, a, b)) &&
+         rx == roundToInteger(rotatedX<Fusion::kSecond>(x, y, a, b)) &&
+         ry == roundToInteger(rotatedY<Fusion::kFirst>(x, y, a, b)) &&
+         ry == roundToInteger(rotatedY<Fusion::kSecond>(x, y, a, b));
+}
+
+// Keypoints (many positions per angle) at angles where the roundings disagree on some test point.
+// Such angles are rare (a rotated coordinate within an ulp of a .5 tie), so they are solved for:
+// x a - y b = r cos(t + p) with r = |(x, y)|, p = atan2(y, x), equals k + 1/2 at
+// t = +-acos((k + 1/2) / r) - p (x b + y a likewise with p - pi/2); the 64 float angles in degrees
+// around each solution are tried in turn.
+std::vector<cv::KeyPoint> tieKeypoints(const TestPoints& points, cv::RNG& rng) {
+  std::vector<cv::KeyPoint> keypoints;
+  int angles = 0;
+  for (int j = 0; j < 512 && angles < 64; j += 7) {
+    const double r = std::hypot(points.x[j], points.y[j]);
+    for (int coordinate = 0; coordinate < 2 && angles < 64; ++coordinate) {
+      const double phase = std::atan2(points.y[j], points.x[j]) - coordinate * CV_PI / 2;
+      for (double half = -std::floor(r - 0.5) - 0.5; half < r && angles < 64; half += 1.0) {
+        for (int sign : {-1, 1}) {
+          const double radians = sign * std::acos(half / r) - phase;
+          float degrees = static_cast<float>(std::fmod(radians * 180.0 / CV_PI + 720.0, 360.0));
+          for (int step = 0; step < 32; ++step) {
+            degrees = std::nextafter(degrees, 0.f);
+          }
+          for (int step = 0; step < 64; ++step, degrees = std::nextafter(degrees, 360.f)) {
+            float a, b;
+            cosineAndSine(degrees, a, b);
+            if (!roundingsAgree(points.x[j], points.y[j], a, b)) {
+              ++angles;
+              for (int k = 0; k < 16; ++k) {
+                keypoints.emplace_back(
+                    cv::Point2f(static_cast<float>(rng.uniform(20, 140)), static_cast<float>(rng.uniform(20, 140))),
+                    31.0f, degrees);
+              }
+              break;
+            }
+          }
+        }
+      }
+    }
+  }
+  return keypoints;
+}
+
+// The one of the five roundings whose descriptors equal cv::ORB's on keypoints at ties.
+RotationRounding findRotationRounding() {
+  const TestPoints& points = testPoints(*g_tests);
+  cv::Mat image(160, 160, CV_8UC1);
+  cv::RNG rng(54321);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  std::vector<cv::KeyPoint> keypoints = tieKeypoints(points, rng);
+  cv::Mat theirs;
+  std::vector<cv::KeyPoint> theirs_kps = keypoints;
+  openCvDescriber()->compute(image, theirs_kps, theirs);
+  if (theirs_kps.size() != keypoints.size()) {
+    throw std::runtime_error("rBRIEF: cv::ORB dropped keypoints of the rounding check");
+  }
+  SmoothingBuffers buffers;
+  cv::Mat smoothed;
+  smoothForDescription(image, buffers, smoothed);
+  cv::Mat ours(static_cast<int>(keypoints.size()), 32, CV_8UC1);
+  const RotationRounding candidates[] = {{Fusion::kNone, Fusion::kNone},
+                                         {Fusion::kFirst, Fusion::kFirst},
+                                         {Fusion::kFirst, Fusion::kSecond},
+                                         {Fusion::kSecond, Fusion::kFirst},
+                                         {Fusion::kSecond, Fusion::kSecond}};
+  for (const RotationRounding& candidate : candidates) {
+    describe(smoothed, keypoints, ours, 0, candidate);
+    if (cv::norm(ours, theirs, cv::NORM_HAMMING) == 0) {
+      return candidate;
+    }
+  }
+  throw std::runtime_error("rBRIEF: no rounding of the test points' rotation reproduces cv::ORB's descriptors");
+}
+
+}  // namespace
+
 void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
               int first_row) {
+  describe(smoothed, keypoints, descriptors, first_row, g_tests ? g_rounding : orbRotationRounding());
+}
+
+void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors, int first_row,
+              RotationRounding rounding) {
   const std::array<BriefTest, 256>& tests = g_tests ? *g_tests : orbTests();
   const TestPoints& points = testPoints(tests);
+  const OffsetsFunction offsets = offsetsFunction(rounding);
   const int step = static_cast<int>(smoothed.step);
   alignas(64) int offset[512];
   for (size_t k = 0; k < keypoints.size(); ++k) {
     const cv::KeyPoint& kp = keypoints[k];
-    // The rotation as cv::ORB rounds it: single-precision angle, cosine and sine, products and
-    // sums, each point rounded to the nearest pixel; the loop is vectorised.
-    const float angle = kp.angle * static_cast<float>(CV_PI / 180.f);
-    const float a = std::cos(angle);
-    const float b = std::sin(angle);
-    for (int j = 0; j < 512; ++j) {
-      const float ix = roundToInteger(points.x[j] * a - points.y[j] * b);
-      const float iy = roundToInteger(points.x[j] * b + points.y[j] * a);
-      offset[j] = static_cast<int>(iy) * step + static_cast<int>(ix);
-    }
+    float a, b;
+    cosineAndSine(kp.angle, a, b);
+    offsets(points, a, b, step, offset);
     const std::uint8_t* centre = smoothed.ptr<std::uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
     std::uint8_t* out = descriptors.ptr<std::uint8_t>(first_row + static_cast<int>(k));
     for (int byte = 0; byte < 32; ++byte) {

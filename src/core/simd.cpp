@@ -70,7 +70,13 @@ const char* toString(SimdLevel level) {
     case SimdLevel::kScalar:
       return "scalar";
     case SimdLevel::kVector128:
+#if defined(__x86_64__) || defined(__i386__)
       return "sse2";
+#elif defined(__aarch64__)
+      return "neon";
+#else
+      return "vector128";
+#endif
     case SimdLevel::kAvx2:
       return "avx2";
   }

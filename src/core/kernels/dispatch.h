@@ -10,6 +10,12 @@
 #else
 #define ENHANCED_ORB_X86_KERNEL(kernel) nullptr
 #endif
+// An aarch64-only kernel (NEON), or none elsewhere.
+#if defined(ENHANCED_ORB_NEON_KERNELS)
+#define ENHANCED_ORB_NEON_KERNEL(kernel) kernel
+#else
+#define ENHANCED_ORB_NEON_KERNEL(kernel) nullptr
+#endif
 
 namespace enhanced_orb {
 namespace kernels {

@@ -44,35 +44,43 @@ void gaussianColumnScalar(const float* const* rows, int n, const float* k, std::
   }
 }
 
-// The 16-byte resize kernels are SSE2 code, built on x86 (pyramid_rows_vector128.cpp).
-#if defined(__SSE2__)
-#define ENHANCED_ORB_SSE2_KERNEL(kernel) kernel
+// The 16-byte resize kernels are SSE2 code on x86 (pyramid_rows_vector128.cpp), NEON code on aarch64
+// (pyramid_rows_neon.cpp, which has the smoothing's too).
+#if defined(__SSE2__) || defined(ENHANCED_ORB_NEON_KERNELS)
+#define ENHANCED_ORB_RESIZE128_KERNEL(kernel) kernel
 #else
-#define ENHANCED_ORB_SSE2_KERNEL(kernel) nullptr
+#define ENHANCED_ORB_RESIZE128_KERNEL(kernel) nullptr
 #endif
 
 bool hasVectorLinearKernels(SimdLevel level) {
-  return selectKernel(level, linearRowScalar, ENHANCED_ORB_SSE2_KERNEL(linearRowVector128),
+  return selectKernel(level, linearRowScalar, ENHANCED_ORB_RESIZE128_KERNEL(linearRowVector128),
                       ENHANCED_ORB_X86_KERNEL(linearRowAvx2)) != linearRowScalar;
 }
 
 void linearRow(SimdLevel level, const std::uint8_t* src, const LinearTaps& taps, std::uint16_t* out) {
-  selectKernel(level, linearRowScalar, ENHANCED_ORB_SSE2_KERNEL(linearRowVector128),
+  selectKernel(level, linearRowScalar, ENHANCED_ORB_RESIZE128_KERNEL(linearRowVector128),
                ENHANCED_ORB_X86_KERNEL(linearRowAvx2))(src, taps, out);
 }
 
 void linearColumn(SimdLevel level, const std::uint16_t* a, const std::uint16_t* b, int weight, int n,
                   std::uint8_t* out) {
-  selectKernel(level, linearColumnScalar, ENHANCED_ORB_SSE2_KERNEL(linearColumnVector128), nullptr)(a, b, weight, n,
-                                                                                                    out);
+  selectKernel(level, linearColumnScalar, ENHANCED_ORB_RESIZE128_KERNEL(linearColumnVector128), nullptr)(a, b, weight,
+                                                                                                         n, out);
+}
+
+bool hasVectorGaussianKernels(SimdLevel level) {
+  return selectKernel(level, gaussianRowScalar, ENHANCED_ORB_NEON_KERNEL(gaussianRowVector128),
+                      ENHANCED_ORB_X86_KERNEL(gaussianRowAvx2)) != gaussianRowScalar;
 }
 
 void gaussianRow(SimdLevel level, const std::uint8_t* src, int n, const float* k, float* out) {
-  selectKernel(level, gaussianRowScalar, nullptr, ENHANCED_ORB_X86_KERNEL(gaussianRowAvx2))(src, n, k, out);
+  selectKernel(level, gaussianRowScalar, ENHANCED_ORB_NEON_KERNEL(gaussianRowVector128),
+               ENHANCED_ORB_X86_KERNEL(gaussianRowAvx2))(src, n, k, out);
 }
 
 void gaussianColumn(SimdLevel level, const float* const* rows, int n, const float* k, std::uint8_t* out) {
-  selectKernel(level, gaussianColumnScalar, nullptr, ENHANCED_ORB_X86_KERNEL(gaussianColumnAvx2))(rows, n, k, out);
+  selectKernel(level, gaussianColumnScalar, ENHANCED_ORB_NEON_KERNEL(gaussianColumnVector128),
+               ENHANCED_ORB_X86_KERNEL(gaussianColumnAvx2))(rows, n, k, out);
 }
 
 }  // namespace kernels

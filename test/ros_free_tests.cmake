@@ -1,0 +1,23 @@
+# The gtests of the ROS-free libraries, shared by the catkin build and the standalone one
+# (cmake/ros_free). Each includer defines enhanced_orb_add_gtest(target source) and sets
+# ENHANCED_ORB_GTEST_MAIN, ENHANCED_ORB_EUROC_DIR and ENHANCED_ORB_MOVING_DIR.
+foreach(unit params enhance noise adaptive_threshold orb_extractor degenerate draw concurrency)
+  enhanced_orb_add_gtest(test_${unit} ${ENHANCED_ORB_ROOT}/test/unit/test_${unit}.cpp)
+  target_link_libraries(test_${unit} enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})
+  target_compile_definitions(test_${unit} PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}")
+endforeach()
+# The extractor against its reference; it reads the kernels' internal header.
+enhanced_orb_add_gtest(test_identity ${ENHANCED_ORB_ROOT}/test/unit/test_identity.cpp)
+target_link_libraries(test_identity enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})
+target_include_directories(test_identity PRIVATE ${ENHANCED_ORB_ROOT}/src/core)
+target_compile_definitions(test_identity PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}")
+foreach(kernels X86 NEON)
+  if(ENHANCED_ORB_${kernels}_KERNELS)
+    target_compile_definitions(test_identity PRIVATE ENHANCED_ORB_${kernels}_KERNELS)
+  endif()
+endforeach()
+enhanced_orb_add_gtest(test_evaluation ${ENHANCED_ORB_ROOT}/test/unit/test_evaluation.cpp)
+target_link_libraries(test_evaluation enhanced_orb_evaluation ${ENHANCED_ORB_GTEST_MAIN})
+enhanced_orb_add_gtest(test_sequence ${ENHANCED_ORB_ROOT}/test/unit/test_sequence.cpp)
+target_link_libraries(test_sequence enhanced_orb_evaluation ${ENHANCED_ORB_GTEST_MAIN})
+target_compile_definitions(test_sequence PRIVATE ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}")
