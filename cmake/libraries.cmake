@@ -35,6 +35,10 @@ add_library(enhanced_orb_core
   ${ENHANCED_ORB_ROOT}/src/core/simd.cpp
   ${ENHANCED_ORB_ROOT}/src/core/enhance.cpp
   ${ENHANCED_ORB_ROOT}/src/core/adaptive_threshold.cpp
+  ${ENHANCED_ORB_ROOT}/src/core/pyramid.cpp
+  ${ENHANCED_ORB_ROOT}/src/core/corners.cpp
+  ${ENHANCED_ORB_ROOT}/src/core/selection.cpp
+  ${ENHANCED_ORB_ROOT}/src/core/orientation.cpp
   ${ENHANCED_ORB_ROOT}/src/core/orb_extractor.cpp
   ${ENHANCED_ORB_ROOT}/src/core/linear_resize.cpp
   ${ENHANCED_ORB_ROOT}/src/core/rbrief.cpp

@@ -1,5 +1,7 @@
-// ORB with the truncated adaptive threshold: pyramid, per-cell FAST, orientation by intensity
-// centroid, rBRIEF descriptors interchangeable with cv::ORB's, and the two keypoint budgets.
+// ORB with the truncated adaptive threshold, stage after stage: the enhancement (enhance.h), the
+// pyramid (pyramid.h), per-cell thresholds (adaptive_threshold.h) and FAST corners (corners.h), the
+// budget's selection (selection.h), orientation by intensity centroid (orientation.h) and rBRIEF
+// descriptors interchangeable with cv::ORB's (rbrief.h).
 #ifndef ENHANCED_ORB_ORB_EXTRACTOR_H
 #define ENHANCED_ORB_ORB_EXTRACTOR_H
 
@@ -10,17 +12,14 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
+#include "enhanced_orb/corners.h"
+#include "enhanced_orb/orientation.h"
 #include "enhanced_orb/params.h"
+#include "enhanced_orb/pyramid.h"
+#include "enhanced_orb/rbrief.h"
+#include "enhanced_orb/selection.h"
 
 namespace enhanced_orb {
-
-// Keypoints closer than this to a level's border are not detected: the orientation patch
-// (radius 15) and the rotated descriptor pattern (radius < 19) then stay inside the image.
-constexpr int kEdgeThreshold = 19;
-// ORB's patch diameter; a keypoint of octave o has size kPatchSize * scale_factor^o.
-constexpr int kPatchSize = 31;
-// Descriptor length in bytes (256 bits).
-constexpr int kDescriptorBytes = 32;
 
 // Time of each stage of one extraction, in milliseconds. With threads > 1 the levels' stages run
 // side by side: each stage is then its time summed over the levels, and extract_ms (wall clock)
@@ -52,45 +51,6 @@ struct Extraction {
   StageTimings timings;
 };
 
-// Section II-C: level 0 is `image`, level i is level i-1 resized (INTER_LINEAR_EXACT, as cv::ORB)
-// to round(size / scale_factor^i). Stops early when a level would have no pixel.
-std::vector<cv::Mat> buildPyramid(const cv::Mat& image, int n_levels, double scale_factor);
-
-// What detectCorners() needs from call to call.
-struct CornerWorkspace {
-  cv::Mat scores;                                     // FAST score of every interior pixel
-  std::vector<std::uint8_t> floors;                   // a row's cell thresholds, pixel by pixel
-  std::vector<std::uint8_t> rows;                     // the suppression's row buffers
-  std::vector<std::vector<cv::KeyPoint>> cell_lists;  // one grid row's corners, cell by cell
-};
-
-// FAST-9 with non-maximum suppression, cell by cell with each cell's threshold from `thresholds`
-// (grid x grid, CV_32S): the corners cv::FAST finds in each cell's window (the cell widened by 3
-// pixels, so that its circle reads the neighbouring pixels), bit for bit, found from one map of
-// FAST scores of the level instead, whose cost does not depend on the thresholds. Only corners at
-// least kEdgeThreshold from the border are returned, in level coordinates, response = cv::FAST's
-// score, cell by cell (row-major), each cell row by row.
-void detectCorners(const cv::Mat& level, const cv::Mat& thresholds, CornerWorkspace& ws,
-                   std::vector<cv::KeyPoint>& corners);
-std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds);
-
-// How a budget of `total` keypoints splits over the levels: geometric with ratio 1/scale_factor
-// (as ORB-SLAM); the last level takes the rounding remainder.
-std::vector<int> levelBudgets(int total, int n_levels, double scale_factor);
-
-// Keeps the `n` strongest keypoints (by response; ties by position, y then x), in their order.
-void keepStrongest(std::vector<cv::KeyPoint>& keypoints, size_t n);
-
-// Keeps at most `n` keypoints, spread over the image: keypoints are bucketed in square cells of
-// about sqrt(area / n) pixels, and taken best response first from every cell in turn: round r
-// takes each cell's r-th best, cell by cell; the last, partial round its best responses, best
-// first. Fewer than `n` keypoints are returned as they are.
-std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int n, cv::Size size);
-
-// Eqs 4-6: the angle (degrees, [0, 360)) of each keypoint by the intensity centroid of the
-// circular patch of radius 15 around it. Keypoints whose patch leaves the image get angle 0.
-void computeOrientation(const cv::Mat& level, std::vector<cv::KeyPoint>& keypoints);
-
 class OrbExtractor {
 public:
   // Throws std::invalid_argument, with every offending parameter named, when `params` is invalid.
@@ -103,8 +63,9 @@ public:
   Extraction extract(const cv::Mat& gray) const;
 
   // The same into `out`, reusing its buffers: in a loop over frames of one size nothing is
-  // allocated once the first frame is done. Headers kept from an earlier result share those
-  // buffers and see them overwritten.
+  // allocated once the first frame is done. A result the caller keeps (a copy of `out`, or of one
+  // of its matrices, made before the call) keeps its values: a buffer shared with it is let go
+  // and a new one allocated instead of being overwritten.
   //
   // An extractor keeps a workspace (pyramid, score maps, histograms, keypoint lists) per
   // concurrent call and reuses it: calls from several threads at once are safe and get the

@@ -14,6 +14,9 @@
 
 namespace enhanced_orb {
 
+// Descriptor length in bytes (256 bits).
+constexpr int kDescriptorBytes = 32;
+
 // One test: bit = I(x1, y1) < I(x2, y2), offsets from the keypoint before rotation.
 struct BriefTest {
   int x1, y1, x2, y2;

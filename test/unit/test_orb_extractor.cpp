@@ -408,3 +408,34 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
   // In between, more corners pass a lower floor: the selection changes with it.
   EXPECT_FALSE(same(run(0.0, 4.0), run(0.0, 12.0)));
 }
+
+// The contract of the buffer-reusing extract(): a result the caller keeps keeps its values, the
+// next call into the same Extraction writes elsewhere; one it does not keep is reused in place.
+TEST(Extractor, KeptResultsKeepTheirValuesAndUnsharedBuffersAreReused) {
+  for (Params params : {Params(), Params::paper(), Params::baseline()}) {
+    params.orb.max_features = 200;  // the same number of rows each time: same-size buffers
+    const OrbExtractor extractor(params);
+    Extraction out;
+    extractor.extract(test::syntheticScene(cv::Size(320, 240), 60, 1), out);
+    const Extraction kept = out;  // shares every buffer of `out`
+    const cv::Mat descriptors = kept.descriptors.clone();
+    const cv::Mat thresholds = kept.cell_thresholds.clone();
+    const std::vector<cv::KeyPoint> keypoints = kept.keypoints;
+    ASSERT_EQ(keypoints.size(), 200u);
+    extractor.extract(test::syntheticScene(cv::Size(320, 240), 60, 2), out);
+    ASSERT_EQ(out.descriptors.rows, 200);
+    EXPECT_NE(out.descriptors.data, kept.descriptors.data);
+    EXPECT_EQ(cv::norm(kept.descriptors, descriptors, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(kept.cell_thresholds, thresholds, cv::NORM_INF), 0.0);
+    EXPECT_EQ(kept.keypoints.size(), keypoints.size());
+    if (params.enhance_enabled) {
+      EXPECT_NE(out.image.data, kept.image.data);
+    }
+    // Nothing shares `out` now: the next call writes into its buffers.
+    const std::uint8_t* own = out.descriptors.data;
+    const int rows = out.descriptors.rows;
+    extractor.extract(test::syntheticScene(cv::Size(320, 240), 60, 2), out);
+    EXPECT_EQ(out.descriptors.rows, rows);
+    EXPECT_EQ(out.descriptors.data, own);
+  }
+}

@@ -52,49 +52,30 @@ void linearColumnVector128(const std::uint16_t* a, const std::uint16_t* b, int w
 }
 
 void gaussianRowVector128(const std::uint8_t* src, int n, const float* k, float* out) {
-  if (n < 4) {
-    gaussianRowScalar(src, n, k, out);
-    return;
-  }
   float32x4_t taps[7];
   for (int j = 0; j < 7; ++j) {
     taps[j] = vdupq_n_f32(k[j]);
   }
-  // In chunks: the chunk's pixels (and the 6 after it) converted to float once, then each output
-  // a product and six fused multiply-adds reading them.
-  constexpr int kChunk = 256;
-  alignas(16) float pixels[kChunk + 16];
-  for (int c = 0; c < n; c += kChunk) {
-    const int m = n - c < kChunk ? n - c : kChunk;
-    const std::uint8_t* s = src + c;
-    int i = 0;
-    for (; i + 8 <= m + 6; i += 8) {
-      const uint16x8_t words = vmovl_u8(vld1_u8(s + i));
-      vst1q_f32(pixels + i, vcvtq_f32_u32(vmovl_u16(vget_low_u16(words))));
-      vst1q_f32(pixels + i + 4, vcvtq_f32_u32(vmovl_u16(vget_high_u16(words))));
-    }
-    for (; i < m + 6; ++i) {
-      pixels[i] = static_cast<float>(s[i]);
-    }
-    auto block = [&](int x) {
-      float32x4_t r = vmulq_f32(taps[0], vld1q_f32(pixels + x));
-      for (int j = 1; j < 7; ++j) {
-        r = vfmaq_f32(r, taps[j], vld1q_f32(pixels + x + j));  // r + k_j s[x + j], one rounding
-      }
-      vst1q_f32(out + c + x, r);
-    };
-    int x = 0;
-    for (; x + 4 <= m; x += 4) {
-      block(x);
-    }
-    if (x < m) {
-      if (m >= 4) {
-        block(m - 4);  // overlapping: rewrites the same values
-      } else {
-        gaussianRowScalar(s + x, m - x, k, out + c + x);
-      }
-    }
+  // Four outputs read 10 pixels: one 16-byte load while it stays inside the row (n + 6 pixels),
+  // widened to three float vectors; the pixels at j = 1..6 are shifts across them (vext).
+  int x = 0;
+  for (; x + 16 <= n + 6; x += 4) {
+    const uint8x16_t bytes = vld1q_u8(src + x);
+    const uint16x8_t low = vmovl_u8(vget_low_u8(bytes));
+    const float32x4_t p0 = vcvtq_f32_u32(vmovl_u16(vget_low_u16(low)));
+    const float32x4_t p1 = vcvtq_f32_u32(vmovl_u16(vget_high_u16(low)));
+    const float32x4_t p2 = vcvtq_f32_u32(vmovl_u16(vget_low_u16(vmovl_u8(vget_high_u8(bytes)))));
+    float32x4_t r = vmulq_f32(taps[0], p0);
+    r = vfmaq_f32(r, taps[1], vextq_f32(p0, p1, 1));  // r + k_j s[x + j], one rounding each
+    r = vfmaq_f32(r, taps[2], vextq_f32(p0, p1, 2));
+    r = vfmaq_f32(r, taps[3], vextq_f32(p0, p1, 3));
+    r = vfmaq_f32(r, taps[4], p1);
+    r = vfmaq_f32(r, taps[5], vextq_f32(p1, p2, 1));
+    r = vfmaq_f32(r, taps[6], vextq_f32(p1, p2, 2));
+    vst1q_f32(out + x, r);
   }
+  // The last outputs, by the scalar kernel.
+  gaussianRowScalar(src + x, n - x, k, out + x);
 }
 
 void gaussianColumnVector128(const float* const* rows, int n, const float* k, std::uint8_t* out) {
