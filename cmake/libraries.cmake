@@ -40,6 +40,8 @@ add_library(enhanced_orb_core
   ${ENHANCED_ORB_ROOT}/src/core/selection.cpp
   ${ENHANCED_ORB_ROOT}/src/core/orientation.cpp
   ${ENHANCED_ORB_ROOT}/src/core/orb_extractor.cpp
+  ${ENHANCED_ORB_ROOT}/src/core/feature2d.cpp
+  ${ENHANCED_ORB_ROOT}/src/core/orb_slam_extractor.cpp
   ${ENHANCED_ORB_ROOT}/src/core/linear_resize.cpp
   ${ENHANCED_ORB_ROOT}/src/core/rbrief.cpp
   ${ENHANCED_ORB_ROOT}/src/core/draw.cpp

@@ -16,6 +16,11 @@ foreach(kernels X86 NEON)
     target_compile_definitions(test_identity PRIVATE ENHANCED_ORB_${kernels}_KERNELS)
   endif()
 endforeach()
+# The drop-in adapters (cv::Feature2D, ORB-SLAM's extractor); they read the package's config files.
+enhanced_orb_add_gtest(test_adapters ${ENHANCED_ORB_ROOT}/test/unit/test_adapters.cpp)
+target_link_libraries(test_adapters enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})
+target_compile_definitions(test_adapters PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}"
+  ENHANCED_ORB_SOURCE_DIR="${ENHANCED_ORB_ROOT}")
 enhanced_orb_add_gtest(test_evaluation ${ENHANCED_ORB_ROOT}/test/unit/test_evaluation.cpp)
 target_link_libraries(test_evaluation enhanced_orb_evaluation ${ENHANCED_ORB_GTEST_MAIN})
 enhanced_orb_add_gtest(test_sequence ${ENHANCED_ORB_ROOT}/test/unit/test_sequence.cpp)

@@ -6,6 +6,7 @@
 #define ENHANCED_ORB_ORB_EXTRACTOR_H
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -47,8 +48,18 @@ struct Extraction {
   double lambda = 0.0;                    // eq 7 of the input (0 when enhancement is off)
   bool poor_quality = false;
   bool inverted = false;
-  double noise = 0.0;  // estimateNoise() of `image` where noise_floor uses it, else 0
+  double noise = 0.0;            // estimateNoise() of `image` where noise_floor uses it, else 0
+  std::vector<cv::Mat> pyramid;  // with ExtractOptions::keep_pyramid: each level's image (level 0 = image)
   StageTimings timings;
+};
+
+// What an extraction takes besides the image.
+struct ExtractOptions {
+  // Empty, or CV_8UC1 of the image's size: no keypoint where it is 0 (at the keypoint's level-0
+  // position); such corners are left out before the budget's selection, so they take none of it.
+  cv::Mat mask;
+  // Copy each pyramid level into Extraction::pyramid (into its own buffers, reused from call to call).
+  bool keep_pyramid = false;
 };
 
 class OrbExtractor {
@@ -72,9 +83,21 @@ public:
   // results of sequential calls; copies of an extractor share its workspaces.
   void extract(const cv::Mat& gray, Extraction& out) const;
 
+  // The same with a mask and, on request, the pyramid. Throws std::invalid_argument when the mask
+  // is neither empty nor CV_8UC1 of gray's size.
+  void extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const;
+
+  // The descriptors of given keypoints (level-0 coordinates, `octave` naming the level, `angle` in
+  // degrees, as extract() gives them) on the same enhanced and smoothed pyramid as extract(), in
+  // their order. Keypoints that cannot be described (octave outside the pyramid, or closer than
+  // kEdgeThreshold to their level's border) are removed, as cv::ORB removes them.
+  void describe(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const;
+
   struct Workspace;
 
 private:
+  // A workspace from the pool, returned to it when the pointer goes.
+  std::unique_ptr<Workspace, std::function<void(Workspace*)>> lease() const;
   std::unique_ptr<Workspace> acquire() const;
   void release(std::unique_ptr<Workspace> ws) const;
 

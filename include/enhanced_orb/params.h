@@ -121,6 +121,9 @@ std::vector<std::string> validate(const Params& p);
 // checked by validate().
 std::string setParam(Params& params, const std::string& name, const std::string& value);
 
+// Every name setParam() knows, in one fixed order.
+std::vector<std::string> paramNames();
+
 // The value of the parameter `name` as text that setParam() reads back to the same value; nullopt
 // for a name setParam() does not know.
 std::optional<std::string> paramText(const Params& params, const std::string& name);

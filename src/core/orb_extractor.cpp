@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -128,10 +129,21 @@ void enhanceInto(const cv::Mat& gray, const Params& params, Extraction& out) {
   out.inverted = enhanced.inverted;
 }
 
+// Drops the corners of `level` whose level-0 position is 0 in `mask`.
+void applyMask(const cv::Mat& mask, float scale, std::vector<cv::KeyPoint>& corners) {
+  corners.erase(std::remove_if(corners.begin(), corners.end(),
+                               [&](const cv::KeyPoint& kp) {
+                                 const int x = std::min(cvRound(kp.pt.x * scale), mask.cols - 1);
+                                 const int y = std::min(cvRound(kp.pt.y * scale), mask.rows - 1);
+                                 return mask.at<std::uint8_t>(y, x) == 0;
+                               }),
+                corners.end());
+}
+
 // Per level: the level itself, its cell thresholds (adaptive_threshold.h, or the fixed one), its
-// corners and cv::ORB's smoothing for the descriptors. An empty image has one empty level: its
-// thresholds are the grid's, its corners none.
-void detectLevels(const Params& params, OrbExtractor::Workspace& ws, Extraction& out) {
+// corners (those the mask allows) and cv::ORB's smoothing for the descriptors. An empty image has
+// one empty level: its thresholds are the grid's, its corners none.
+void detectLevels(const Params& params, const cv::Mat& mask, OrbExtractor::Workspace& ws, Extraction& out) {
   const int n_levels = ws.pyramid.count();
   ws.levels.resize(std::max(ws.levels.size(), static_cast<size_t>(n_levels)));
   ws.keypoints.resize(std::max(ws.keypoints.size(), static_cast<size_t>(n_levels)));
@@ -154,6 +166,9 @@ void detectLevels(const Params& params, OrbExtractor::Workspace& ws, Extraction&
     }
     l.timings.threshold_ms = clock.lap();
     detectCorners(image, thresholds, l.corners, ws.keypoints[level]);
+    if (!mask.empty()) {
+      applyMask(mask, levelScale(params.orb.scale_factor, level), ws.keypoints[level]);
+    }
     l.timings.fast_ms = clock.lap();
     if (!ws.keypoints[level].empty()) {
       smoothForDescription(image, l.smoothing, l.smoothed);
@@ -197,6 +212,30 @@ void describeLevels(const OrbParams& orb, OrbExtractor::Workspace& ws, Extractio
   });
 }
 
+// Each level's image into out.pyramid (level 0 is out.image itself), or none.
+void keepPyramid(bool keep, const PyramidLevels& pyramid, Extraction& out) {
+  out.pyramid.resize(keep ? static_cast<size_t>(pyramid.count()) : 0);
+  for (size_t level = 0; level < out.pyramid.size(); ++level) {
+    if (level == 0) {
+      out.pyramid[0] = out.image;
+    } else {
+      ownOrRelease(out.pyramid[level]);
+      pyramid.built(static_cast<int>(level)).copyTo(out.pyramid[level]);
+    }
+  }
+}
+
+void checkInput(const cv::Mat& gray, const cv::Mat& mask) {
+  if (!gray.empty() && gray.type() != CV_8UC1) {
+    throw std::invalid_argument("extract: expected CV_8UC1, got " + cv::typeToString(gray.type()));
+  }
+  if (!mask.empty() && (mask.type() != CV_8UC1 || mask.size() != gray.size())) {
+    throw std::invalid_argument("extract: the mask must be CV_8UC1 of the image's size (" + std::to_string(gray.cols) +
+                                "x" + std::to_string(gray.rows) + "), got " + cv::typeToString(mask.type()) + " " +
+                                std::to_string(mask.cols) + "x" + std::to_string(mask.rows));
+  }
+}
+
 // The levels' stage times summed into `timings` (the levels may have run side by side).
 void addLevelTimings(const OrbExtractor::Workspace& ws, int n_levels, StageTimings& timings) {
   for (int level = 0; level < n_levels; ++level) {
@@ -218,9 +257,18 @@ Extraction OrbExtractor::extract(const cv::Mat& gray) const {
 }
 
 void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
-  if (!gray.empty() && gray.type() != CV_8UC1) {
-    throw std::invalid_argument("extract: expected CV_8UC1, got " + cv::typeToString(gray.type()));
-  }
+  extract(gray, ExtractOptions(), out);
+}
+
+std::unique_ptr<OrbExtractor::Workspace, std::function<void(OrbExtractor::Workspace*)>> OrbExtractor::lease() const {
+  return {acquire().release(), [this](Workspace* ws) {
+            ws->pyramid.releaseInput();  // level 0 may be the caller's image: not kept alive by the pool
+            release(std::unique_ptr<Workspace>(ws));
+          }};
+}
+
+void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const {
+  checkInput(gray, options.mask);
   const OrbParams& orb = params_.orb;
   out.timings = StageTimings();
   out.keypoints.clear();
@@ -228,18 +276,9 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   enhanceInto(gray, params_, out);
   out.timings.enhance_ms = clock.lap();
   Stopwatch wall;
-  std::unique_ptr<Workspace> ws = acquire();
-  struct ReturnToPool {
-    const OrbExtractor* self;
-    std::unique_ptr<Workspace>& ws;
-    ~ReturnToPool() {
-      ws->pyramid.releaseInput();  // level 0 may be the caller's image: not kept alive by the pool
-      self->release(std::move(ws));
-    }
-  } return_to_pool{this, ws};
-
+  const auto ws = lease();
   ws->pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
-  detectLevels(params_, *ws, out);
+  detectLevels(params_, options.mask, *ws, out);
   clock.lap();
   out.noise = orb.max_features > 0 && orb.noise_floor > 0.0 ? estimateNoise(out.image) : 0.0;
   if (orb.max_features > 0) {
@@ -247,8 +286,56 @@ void OrbExtractor::extract(const cv::Mat& gray, Extraction& out) const {
   }
   out.timings.select_ms = clock.lap();
   describeLevels(orb, *ws, out);
+  keepPyramid(options.keep_pyramid, ws->pyramid, out);
   addLevelTimings(*ws, ws->pyramid.count(), out.timings);
   out.timings.extract_ms = wall.lap();
+}
+
+void OrbExtractor::describe(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const {
+  checkInput(gray, cv::Mat());
+  Extraction enhanced;
+  enhanceInto(gray, params_, enhanced);
+  const auto ws = lease();
+  ws->pyramid.reset(enhanced.image, params_.orb.n_levels, params_.orb.scale_factor);
+  const int n_levels = gray.empty() ? 0 : ws->pyramid.count();
+  // The describable keypoints level by level (in their order within a level), in level coordinates.
+  ws->keypoints.resize(std::max(ws->keypoints.size(), static_cast<size_t>(n_levels)));
+  ws->levels.resize(std::max(ws->levels.size(), static_cast<size_t>(n_levels)));
+  std::vector<std::vector<cv::KeyPoint>> given(static_cast<size_t>(n_levels));
+  for (int level = 0; level < n_levels; ++level) {
+    ws->keypoints[level].clear();
+  }
+  for (const cv::KeyPoint& kp : keypoints) {
+    if (kp.octave < 0 || kp.octave >= n_levels) {
+      continue;
+    }
+    const float scale = levelScale(params_.orb.scale_factor, kp.octave);
+    const cv::Size size = ws->pyramid.sizes()[kp.octave];
+    cv::KeyPoint at_level = kp;
+    at_level.pt /= scale;
+    const cv::Point c(cvRound(at_level.pt.x), cvRound(at_level.pt.y));
+    if (c.x >= kEdgeThreshold && c.y >= kEdgeThreshold && c.x < size.width - kEdgeThreshold &&
+        c.y < size.height - kEdgeThreshold) {
+      ws->keypoints[kp.octave].push_back(at_level);
+      given[kp.octave].push_back(kp);
+    }
+  }
+  keypoints.clear();
+  for (const std::vector<cv::KeyPoint>& level : given) {
+    keypoints.insert(keypoints.end(), level.begin(), level.end());
+  }
+  descriptors.create(static_cast<int>(keypoints.size()), kDescriptorBytes, CV_8U);
+  int row = 0;
+  for (int level = 0; level < n_levels; ++level) {
+    if (ws->keypoints[level].empty()) {
+      continue;
+    }
+    double ms = 0.0;
+    Workspace::Level& l = ws->levels[level];
+    smoothForDescription(ws->pyramid.level(level, ms), l.smoothing, l.smoothed);
+    enhanced_orb::describe(l.smoothed, ws->keypoints[level], descriptors, row);
+    row += static_cast<int>(ws->keypoints[level].size());
+  }
 }
 
 }  // namespace enhanced_orb

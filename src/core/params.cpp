@@ -232,6 +232,14 @@ std::string setParam(Params& p, const std::string& name, const std::string& valu
   return field->parse(p, value) ? std::string() : "invalid value for " + name + ": '" + value + "'";
 }
 
+std::vector<std::string> paramNames() {
+  std::vector<std::string> names;
+  for (const Field& f : fields()) {
+    names.push_back(f.name);
+  }
+  return names;
+}
+
 std::optional<std::string> paramText(const Params& p, const std::string& name) {
   const Field* field = findField(name);
   return field ? std::optional<std::string>(field->format(p)) : std::nullopt;

@@ -1,0 +1,93 @@
+#include "enhanced_orb/orb_slam_extractor.h"
+
+#include <cstdlib>
+
+#include <opencv2/imgproc.hpp>
+
+#include "enhanced_orb/feature2d.h"
+
+namespace enhanced_orb {
+namespace {
+
+// The five-argument constructor's other parameters: the file ENHANCED_ORB_CONFIG names, or the
+// default mode.
+Params configuredBase() {
+  const char* path = std::getenv("ENHANCED_ORB_CONFIG");
+  return path && *path ? readParamsFile(path) : Params();
+}
+
+Params withOrbSlamSettings(Params params, int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST) {
+  params.orb.max_features = nfeatures;
+  params.orb.scale_factor = scaleFactor;
+  params.orb.n_levels = nlevels;
+  params.orb.fast_threshold = iniThFAST;
+  params.threshold.c_min = minThFAST;
+  return params;
+}
+
+}  // namespace
+
+OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
+    : OrbSlamExtractor(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, configuredBase()) {}
+
+OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST,
+                                   const Params& base)
+    : extractor_(withOrbSlamSettings(base, nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)) {
+  const OrbParams& orb = extractor_.params().orb;
+  for (int level = 0; level < orb.n_levels; ++level) {
+    const float scale = levelScale(orb.scale_factor, level);
+    mvScaleFactor.push_back(scale);
+    mvInvScaleFactor.push_back(1.0f / scale);
+    mvLevelSigma2.push_back(scale * scale);
+    mvInvLevelSigma2.push_back(1.0f / (scale * scale));
+  }
+}
+
+int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
+                                 cv::OutputArray descriptors, std::vector<int>& vLappingArea) {
+  const cv::Mat input = image.getMat();
+  if (input.empty()) {
+    return -1;
+  }
+  cv::Mat gray = input;
+  if (input.type() == CV_8UC3) {
+    cv::cvtColor(input, gray, cv::COLOR_BGR2GRAY);
+  } else if (input.type() == CV_8UC4) {
+    cv::cvtColor(input, gray, cv::COLOR_BGRA2GRAY);
+  } else if (input.type() != CV_8UC1) {
+    CV_Error(cv::Error::StsUnsupportedFormat,
+             "OrbSlamExtractor: expected an 8-bit gray, BGR or BGRA image, got " + cv::typeToString(input.type()));
+  }
+  ExtractOptions options;
+  options.mask = mask.getMat();
+  options.keep_pyramid = true;
+  extractor_.extract(gray, options, result_);
+  mvImagePyramid = result_.pyramid;
+
+  // ORB-SLAM3's order: keypoints outside the lapping area from the front, inside it from the back.
+  const int n = static_cast<int>(result_.keypoints.size());
+  keypoints.resize(static_cast<size_t>(n));
+  cv::Mat ordered(n, kDescriptorBytes, CV_8U);
+  const bool lapping = vLappingArea.size() >= 2;
+  int mono = 0;
+  int stereo = n - 1;
+  for (int i = 0; i < n; ++i) {
+    const cv::KeyPoint& kp = result_.keypoints[i];
+    const bool inside = lapping && kp.pt.x >= vLappingArea[0] && kp.pt.x <= vLappingArea[1];
+    const int row = inside ? stereo-- : mono++;
+    keypoints[row] = kp;
+    result_.descriptors.row(i).copyTo(ordered.row(row));
+  }
+  if (descriptors.needed()) {
+    ordered.copyTo(descriptors);
+  }
+  return mono;
+}
+
+void OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
+                                  cv::OutputArray descriptors) {
+  std::vector<int> none;
+  (*this)(image, mask, keypoints, descriptors, none);
+}
+
+}  // namespace enhanced_orb
