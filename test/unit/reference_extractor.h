@@ -25,8 +25,34 @@
 namespace enhanced_orb {
 namespace reference {
 
+// tone_curve stretch as ALGORITHM.md defines it: lo is the lowest level with more than tau n of
+// the n pixels of f at or below it, hi the highest with more than tau n at or above it;
+// LUT(i) = 255 (i - lo) / (hi - lo) clipped to [0, 255], the identity when hi <= lo.
+inline GammaLut stretchCurve(const cv::Mat& f, double tau) {
+  std::vector<std::uint8_t> sorted(f.begin<std::uint8_t>(), f.end<std::uint8_t>());
+  std::sort(sorted.begin(), sorted.end());
+  const double n = static_cast<double>(sorted.size());
+  auto atOrBelow = [&](int level) {
+    return static_cast<double>(std::upper_bound(sorted.begin(), sorted.end(), level) - sorted.begin());
+  };
+  int lo = 0;
+  while (lo < 255 && !(atOrBelow(lo) > tau * n)) {
+    ++lo;
+  }
+  int hi = 255;
+  while (hi > 0 && !(n - atOrBelow(hi - 1) > tau * n)) {
+    --hi;
+  }
+  GammaLut curve{};
+  for (int i = 0; i < 256; ++i) {
+    curve[i] = hi > lo ? static_cast<float>(std::min(255.0, std::max(0.0, 255.0 * (i - lo) / (hi - lo))))
+                       : static_cast<float>(i);
+  }
+  return curve;
+}
+
 // The default mode's enhancement written out: OpenCV's 8-bit Gaussian, the edge-weighted
-// histogram summed sample by sample, E computed pixel by pixel.
+// histogram summed sample by sample (or the stretch curve), E computed pixel by pixel.
 inline EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& params, EnhanceResult result) {
   cv::Mat f;
   cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
@@ -46,7 +72,8 @@ inline EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& p
         histogram[at(x, y)] += std::round(64.0 * std::sqrt(static_cast<double>(g)));
       }
     }
-    curve = equalizingLut(histogram, params.alpha, params.tau);
+    curve = params.tone_curve == ToneCurve::kStretch ? stretchCurve(f, params.tau)
+                                                     : equalizingLut(histogram, params.alpha, params.tau);
   }
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
@@ -84,7 +111,7 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
   result.lambda = imageLambda(gray, &result.mean_gray);
   result.poor_quality = isPoorQuality(result.lambda, params);
 
-  if (params.tone_curve == ToneCurve::kEqualize) {
+  if (params.tone_curve != ToneCurve::kGamma) {  // equalize (the default mode) or stretch
     return enhanceEqualize(gray, params, result);
   }
 

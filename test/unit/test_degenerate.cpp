@@ -18,7 +18,9 @@ std::vector<Params> allModes() {
   parallel.orb.threads = 3;  // more threads than the rows of the smallest images
   Params paper_parallel = Params::paper();
   paper_parallel.orb.threads = 2;
-  return {improved, always, budget, Params::baseline(), parallel, paper_parallel};
+  Params stretch = Params::stretch();
+  stretch.enhance.gamma_mode = GammaMode::kAlways;  // the stretch curve on every image
+  return {improved, always, budget, Params::baseline(), parallel, paper_parallel, stretch, Params::motion()};
 }
 
 void expectDefined(const Extraction& r, const cv::Mat& input, const Params& p) {

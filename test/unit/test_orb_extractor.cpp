@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -286,6 +287,9 @@ TEST(Extractor, InvalidParamsAndInputThrow) {
 TEST(Extractor, DarkenedEurocFrameGivesMoreKeypointsThanBaseline) {
   const cv::Mat frame = test::eurocFrame();
   if (frame.empty()) {
+    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
+      FAIL() << "EuRoC frames not found under " << test::eurocDir() << " (ENHANCED_ORB_REQUIRE_DATA is set)";
+    }
     GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir() << " (../shared absent): skipped";
   }
   cv::Mat dark;
