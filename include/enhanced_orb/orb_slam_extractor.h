@@ -12,20 +12,24 @@
 #ifndef ENHANCED_ORB_ORB_SLAM_EXTRACTOR_H
 #define ENHANCED_ORB_ORB_SLAM_EXTRACTOR_H
 
+//
+// This header needs only C++11 and OpenCV (ORB-SLAM builds as C++11 or C++14); the rest of the
+// package is C++17 behind it.
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
-#include "enhanced_orb/orb_extractor.h"
-#include "enhanced_orb/params.h"
-
 namespace enhanced_orb {
+
+struct Params;
 
 class OrbSlamExtractor {
 public:
   // Throws std::invalid_argument when a value is out of range (validate()).
   OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST);
   OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST, const Params& base);
+  ~OrbSlamExtractor();
 
   // ORB-SLAM3: keypoints (level-0 coordinates, octave, angle, size 31 x scale) and their
   // descriptors, those whose x lies in [vLappingArea[0], vLappingArea[1]] placed after the others
@@ -39,21 +43,22 @@ public:
                   cv::OutputArray descriptors);
 
   int GetLevels() const { return static_cast<int>(mvScaleFactor.size()); }
-  float GetScaleFactor() const { return static_cast<float>(extractor_.params().orb.scale_factor); }
+  float GetScaleFactor() const { return scale_factor_; }
   std::vector<float> GetScaleFactors() const { return mvScaleFactor; }
   std::vector<float> GetInverseScaleFactors() const { return mvInvScaleFactor; }
   std::vector<float> GetScaleSigmaSquares() const { return mvLevelSigma2; }
   std::vector<float> GetInverseScaleSigmaSquares() const { return mvInvLevelSigma2; }
 
-  const Params& params() const { return extractor_.params(); }
+  const Params& params() const;
 
   // Per level, the image the keypoints were found on (the enhanced frame and its pyramid), of
   // size round(cols / scale) x round(rows / scale); ORB-SLAM's stereo matching reads it.
   std::vector<cv::Mat> mvImagePyramid;
 
 private:
-  OrbExtractor extractor_;
-  Extraction result_;
+  struct State;  // the extractor and its reused result
+  std::unique_ptr<State> state_;
+  float scale_factor_;
   std::vector<float> mvScaleFactor, mvInvScaleFactor, mvLevelSigma2, mvInvLevelSigma2;
 };
 

@@ -1,10 +1,12 @@
 #include "enhanced_orb/orb_slam_extractor.h"
 
 #include <cstdlib>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/feature2d.h"
+#include "enhanced_orb/orb_extractor.h"
 
 namespace enhanced_orb {
 namespace {
@@ -27,13 +29,20 @@ Params withOrbSlamSettings(Params params, int nfeatures, float scaleFactor, int 
 
 }  // namespace
 
+struct OrbSlamExtractor::State {
+  OrbExtractor extractor;
+  Extraction result;
+};
+
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
     : OrbSlamExtractor(nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST, configuredBase()) {}
 
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST,
                                    const Params& base)
-    : extractor_(withOrbSlamSettings(base, nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)) {
-  const OrbParams& orb = extractor_.params().orb;
+    : state_(new State{OrbExtractor(withOrbSlamSettings(base, nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)),
+                       Extraction()}),
+      scale_factor_(scaleFactor) {
+  const OrbParams& orb = state_->extractor.params().orb;
   for (int level = 0; level < orb.n_levels; ++level) {
     const float scale = levelScale(orb.scale_factor, level);
     mvScaleFactor.push_back(scale);
@@ -41,6 +50,12 @@ OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels
     mvLevelSigma2.push_back(scale * scale);
     mvInvLevelSigma2.push_back(1.0f / (scale * scale));
   }
+}
+
+OrbSlamExtractor::~OrbSlamExtractor() = default;
+
+const Params& OrbSlamExtractor::params() const {
+  return state_->extractor.params();
 }
 
 int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
@@ -61,22 +76,23 @@ int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std:
   ExtractOptions options;
   options.mask = mask.getMat();
   options.keep_pyramid = true;
-  extractor_.extract(gray, options, result_);
-  mvImagePyramid = result_.pyramid;
+  Extraction& result = state_->result;
+  state_->extractor.extract(gray, options, result);
+  std::swap(mvImagePyramid, result.pyramid);  // the previous levels' buffers are reused next time
 
   // ORB-SLAM3's order: keypoints outside the lapping area from the front, inside it from the back.
-  const int n = static_cast<int>(result_.keypoints.size());
+  const int n = static_cast<int>(result.keypoints.size());
   keypoints.resize(static_cast<size_t>(n));
   cv::Mat ordered(n, kDescriptorBytes, CV_8U);
   const bool lapping = vLappingArea.size() >= 2;
   int mono = 0;
   int stereo = n - 1;
   for (int i = 0; i < n; ++i) {
-    const cv::KeyPoint& kp = result_.keypoints[i];
+    const cv::KeyPoint& kp = result.keypoints[i];
     const bool inside = lapping && kp.pt.x >= vLappingArea[0] && kp.pt.x <= vLappingArea[1];
     const int row = inside ? stereo-- : mono++;
     keypoints[row] = kp;
-    result_.descriptors.row(i).copyTo(ordered.row(row));
+    result.descriptors.row(i).copyTo(ordered.row(row));
   }
   if (descriptors.needed()) {
     ordered.copyTo(descriptors);

@@ -1,8 +1,10 @@
-// A straightforward implementation of the whole extraction, from OpenCV's building blocks and
-// the definitions written out: the enhancement pixel by pixel (default mode) or as separate passes
-// over float images (paper), cv::FAST run cell by cell, Otsu through cv::threshold, the spread selection on
-// cv::KeyPoint vectors, the orientation pixel by pixel, and cv::ORB::compute level by level. The library's extractor
-// must give exactly its enhanced image, keypoints, thresholds and descriptors.
+// A straightforward implementation of the whole extraction, written from docs/ALGORITHM.md with
+// OpenCV's building blocks and no call into the library's stages (it uses the library's types
+// only): the enhancement pixel by pixel (default mode and stretch) or as separate passes over float
+// images (paper), the curves of eqs 10-16, the grid and the thresholds of eqs 21-34 through
+// cv::threshold, cv::FAST run cell by cell, the budget's shares and the spread selection on
+// cv::KeyPoint vectors, the orientation pixel by pixel, and cv::ORB::compute level by level. The
+// library's extractor must give exactly its enhanced image, keypoints, thresholds and descriptors.
 #ifndef ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
 #define ENHANCED_ORB_TEST_REFERENCE_EXTRACTOR_H
 
@@ -10,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +27,53 @@
 
 namespace enhanced_orb {
 namespace reference {
+
+// Eqs 10-13 as ALGORITHM.md writes them: P_i = n_i / n, P_wi = P_max ((P_i - P_min) /
+// (P_max - P_min))^alpha (P_max where every level is as frequent), C_wi = sum_{h <= i} P_wh / sum P_wh;
+// all zero for an empty histogram.
+template <typename Counts>
+std::vector<double> weightedCumulative(const Counts& counts, double alpha) {
+  const double n = std::accumulate(counts.begin(), counts.end(), 0.0);
+  std::vector<double> c(256, 0.0);
+  if (n <= 0.0) {
+    return c;
+  }
+  std::vector<double> p(256), pw(256);
+  std::transform(counts.begin(), counts.end(), p.begin(), [n](double count) { return count / n; });
+  const auto [least, most] = std::minmax_element(p.begin(), p.end());
+  const double p_min = *least, p_max = *most;
+  std::transform(p.begin(), p.end(), pw.begin(), [&](double pi) {
+    return p_max == p_min ? p_max : p_max * std::pow((pi - p_min) / (p_max - p_min), alpha);
+  });
+  std::partial_sum(pw.begin(), pw.end(), c.begin());
+  const double total = c.back();
+  std::for_each(c.begin(), c.end(), [total](double& v) { v /= total; });
+  return c;
+}
+
+// The default mode's curve: LUT(i) = 255 (tau i / 255 + (1 - tau) C_w(i)); the identity for an
+// empty histogram.
+template <typename Counts>
+GammaLut equalizingCurve(const Counts& counts, double alpha, double tau) {
+  const std::vector<double> c = weightedCumulative(counts, alpha);
+  GammaLut curve{};
+  for (int i = 0; i < 256; ++i) {
+    curve[i] = static_cast<float>(c.back() == 0.0 ? i : 255.0 * (tau * i / 255.0 + (1.0 - tau) * c[i]));
+  }
+  return curve;
+}
+
+// The paper's curve, eqs 14-16: gamma_i = max(tau, 1 - C_wi), LUT(i) = 255 (i / 255)^gamma_i.
+template <typename Counts>
+GammaLut gammaCurve(const Counts& counts, double alpha, double tau) {
+  const std::vector<double> c = weightedCumulative(counts, alpha);
+  GammaLut curve{};
+  for (int i = 0; i < 256; ++i) {
+    const double gamma = c.back() == 0.0 ? 1.0 : std::max(tau, 1.0 - c[i]);
+    curve[i] = static_cast<float>(255.0 * std::pow(i / 255.0, gamma));
+  }
+  return curve;
+}
 
 // tone_curve stretch as ALGORITHM.md defines it: lo is the lowest level with more than tau n of
 // the n pixels of f at or below it, hi the highest with more than tau n at or above it;
@@ -73,7 +123,7 @@ inline EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& p
       }
     }
     curve = params.tone_curve == ToneCurve::kStretch ? stretchCurve(f, params.tau)
-                                                     : equalizingLut(histogram, params.alpha, params.tau);
+                                                     : equalizingCurve(histogram, params.alpha, params.tau);
   }
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
@@ -94,22 +144,21 @@ inline EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& p
   return result;
 }
 
+// Steps 1-3 and the tone curve's output (eqs 7-20) for valid parameters: lambda = std(I / 255)
+// (eq 7), poor when it exceeds std_threshold (gamma_mode auto), always or never otherwise.
 inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
-  cv::Mat output;
-  if (!gray.empty() && gray.type() != CV_8UC1) {
-    throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
-  }
-  const std::vector<std::string> problems = validate(params);
-  if (!problems.empty()) {
-    throw std::invalid_argument("enhance: " + joinMessages(problems));
-  }
   EnhanceResult result;
+  result.image = cv::Mat(gray.size(), CV_8UC1);
   if (gray.empty()) {
-    result.image.create(gray.size(), CV_8UC1);  // as empty as the input (0 x n or n x 0)
     return result;
   }
-  result.lambda = imageLambda(gray, &result.mean_gray);
-  result.poor_quality = isPoorQuality(result.lambda, params);
+  cv::Scalar mean, deviation;
+  cv::meanStdDev(gray, mean, deviation);
+  result.mean_gray = mean[0];
+  result.lambda = deviation[0] / 255.0;
+  result.poor_quality = params.gamma_mode == GammaMode::kAlways ||
+                        (params.gamma_mode == GammaMode::kAuto && result.lambda > params.std_threshold);
+  cv::Mat output;
 
   if (params.tone_curve != ToneCurve::kGamma) {  // equalize (the default mode) or stretch
     return enhanceEqualize(gray, params, result);
@@ -154,7 +203,7 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
         ++histogram[row[x]];
       }
     }
-    GammaLut lut = truncatedGammaLut(histogram, params.alpha, params.tau);
+    GammaLut lut = gammaCurve(histogram, params.alpha, params.tau);
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
     cv::scaleAdd(curve_f, b, e, e);
@@ -165,6 +214,14 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
     cv::bitwise_not(result.image, result.image);
   }
   return result;
+}
+
+// The grid of ALGORITHM.md: cell (cx, cy) of an m x m grid spans columns
+// [round(cx W / m), round((cx + 1) W / m)) and rows likewise.
+inline cv::Rect cell(cv::Size size, int m, int cx, int cy) {
+  const auto edge = [m](int length, int k) { return static_cast<int>(std::lround(double(k) * length / m)); };
+  return cv::Rect(cv::Point(edge(size.width, cx), edge(size.height, cy)),
+                  cv::Point(edge(size.width, cx + 1), edge(size.height, cy + 1)));
 }
 
 inline std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::Mat& thresholds) {
@@ -179,18 +236,18 @@ inline std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::M
   std::vector<cv::KeyPoint> found;
   for (int cy = 0; cy < grid; ++cy) {
     for (int cx = 0; cx < grid; ++cx) {
-      const cv::Rect cell = gridCell(level.size(), grid, cx, cy) & interior;
-      if (cell.empty()) {
+      const cv::Rect area = reference::cell(level.size(), grid, cx, cy) & interior;
+      if (area.empty()) {
         continue;
       }
-      const cv::Rect window(cell.x - kFastRadius, cell.y - kFastRadius, cell.width + 2 * kFastRadius,
-                            cell.height + 2 * kFastRadius);
+      const cv::Rect window(area.x - kFastRadius, area.y - kFastRadius, area.width + 2 * kFastRadius,
+                            area.height + 2 * kFastRadius);
       found.clear();
       cv::FAST(level(window), found, thresholds.at<int>(cy, cx), true, cv::FastFeatureDetector::TYPE_9_16);
       for (cv::KeyPoint& kp : found) {
         kp.pt.x += static_cast<float>(window.x);
         kp.pt.y += static_cast<float>(window.y);
-        if (cell.contains(cv::Point(cvRound(kp.pt.x), cvRound(kp.pt.y)))) {
+        if (area.contains(cv::Point(cvRound(kp.pt.x), cvRound(kp.pt.y)))) {
           corners.push_back(kp);
         }
       }
@@ -199,14 +256,39 @@ inline std::vector<cv::KeyPoint> detectCorners(const cv::Mat& level, const cv::M
   return corners;
 }
 
+// Eqs 21-34 per cell: Otsu's threshold t by cv::threshold, I_mid the centre pixel, and
+// C = max(c_min, round(threshold_scale |I_mid - t|)), at most 255; c_min for an empty cell.
 inline cv::Mat cellThresholds(const cv::Mat& level, const ThresholdParams& params) {
   cv::Mat thresholds(params.grid_size, params.grid_size, CV_32S);
   for (int cy = 0; cy < params.grid_size; ++cy) {
     for (int cx = 0; cx < params.grid_size; ++cx) {
-      thresholds.at<int>(cy, cx) = cellThreshold(level(gridCell(level.size(), params.grid_size, cx, cy)), params);
+      const cv::Mat pixels = level(reference::cell(level.size(), params.grid_size, cx, cy));
+      int c = params.c_min;
+      if (!pixels.empty()) {
+        cv::Mat binary;
+        const double t = cv::threshold(pixels, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+        const int i_mid = pixels.at<std::uint8_t>(pixels.rows / 2, pixels.cols / 2);
+        c = std::min(
+            255, std::max(params.c_min, static_cast<int>(std::lround(params.threshold_scale * std::abs(i_mid - t)))));
+      }
+      thresholds.at<int>(cy, cx) = c;
     }
   }
   return thresholds;
+}
+
+// The budget's shares (as ORB-SLAM): level l gets round(total (1 - 1/s) / (1 - (1/s)^n) (1/s)^l),
+// no more than what is left, and the last level the remainder.
+inline std::vector<int> budgets(int total, int n, double s) {
+  std::vector<int> shares(static_cast<size_t>(n), 0);
+  int left = total;
+  for (int l = 0; l + 1 < n; ++l) {
+    const double share = total * (1.0 - 1.0 / s) / (1.0 - std::pow(1.0 / s, n)) * std::pow(1.0 / s, l);
+    shares[l] = std::min(static_cast<int>(std::lround(share)), left);
+    left -= shares[l];
+  }
+  shares[n - 1] = left;
+  return shares;
 }
 
 inline bool stronger(const cv::KeyPoint& a, const cv::KeyPoint& b) {
@@ -348,7 +430,7 @@ inline Extraction extract(const cv::Mat& gray, const Params& params) {
   }
   out.cell_thresholds = out.level_thresholds.front();
   if (orb.max_features > 0) {
-    const std::vector<int> budgets = levelBudgets(orb.max_features, orb.n_levels, orb.scale_factor);
+    const std::vector<int> budgets = reference::budgets(orb.max_features, orb.n_levels, orb.scale_factor);
     int carry = 0;
     for (int level = 0; level < n_levels; ++level) {
       const int budget = budgets[level] + carry;
