@@ -43,7 +43,7 @@ void detectAndDescribe(const cv::Ptr<cv::Feature2D>& detector, const cv::Mat& im
 
 TEST(Feature2D, GivesWhatExtractGivesThroughTheFeature2DInterface) {
   const cv::Mat image = frame();
-  for (const std::string& preset : {"default", "paper", "motion", "stretch", "baseline"}) {
+  for (const char* preset : {"default", "paper", "motion", "stretch", "baseline"}) {
     Params params = presetParams(preset);
     params.orb.max_features = 1000;
     const Extraction expected = OrbExtractor(params).extract(image);
