@@ -154,8 +154,9 @@ void BM_Enhance(benchmark::State& state) {
   ThreadScope scope(threads);
   FrameCycle cycle;
   cv::Mat out;
+  eo::EnhanceWorkspace workspace;
   for (auto _ : state) {
-    out = eo::enhance(cycle.next(), p, out, threads).image;
+    out = eo::enhance(cycle.next(), p, workspace, out, threads).image;
     benchmark::DoNotOptimize(out.data);
   }
   static const char* labels[] = {"paper, gamma auto (EuRoC: not poor)", "paper, gamma always",

@@ -64,12 +64,23 @@ struct EnhanceResult {
   bool inverted = false;      // step 4 (gamma curve only): worked on the negative of a bright poor image
 };
 
+// What enhance() reuses from call to call (fresh buffers of a frame's size would be fresh pages
+// from the kernel, whose faults cost more than the arithmetic). One per concurrent caller.
+struct EnhanceWorkspace {
+  cv::Mat f8;                                          // f, 8 bits (equalize and stretch)
+  cv::Mat input_f, f, e, f_rounded, curve_f;           // the gamma curve's float passes
+  std::vector<int> starts;                             // the bands' first rows
+  std::vector<std::array<std::uint64_t, 256>> counts;  // each band's edge-weighted histogram
+};
+
 // The whole enhancement of an 8-bit gray image (ALGORITHM.md section 1). An empty input gives an
 // empty result. Throws std::invalid_argument when `gray` is not CV_8UC1 or `params` is invalid.
 // `output`, when it has the input's size and type CV_8UC1, receives the result in place (a view of
 // a message buffer, say); otherwise a new image is allocated. It may be `gray` itself. With
 // threads > 1 horizontal bands are worked on side by side (cv::parallel_for_); the result is the
-// same for any count.
+// same for any count. Frame after frame, pass a workspace; without one, each call makes its own.
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& workspace,
+                      cv::Mat output = cv::Mat(), int threads = 1);
 EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output = cv::Mat(), int threads = 1);
 
 }  // namespace enhanced_orb

@@ -256,13 +256,8 @@ WeightedHistogram toWeightedHistogram(const std::array<std::uint64_t, 256>& coun
 // fixed-point Gaussian, one global curve from f's histogram, and E as one table where sharpening
 // is -1.
 EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads,
-                          EnhanceResult result) {
-  thread_local struct {
-    cv::Mat f;
-    std::vector<int> starts;
-    std::vector<std::array<std::uint64_t, 256>> counts;
-  } scratch;
-  cv::Mat& f = scratch.f;
+                          EnhanceResult result, EnhanceWorkspace& scratch) {
+  cv::Mat& f = scratch.f8;
   f.create(gray.size(), CV_8UC1);
   std::vector<int>& starts = scratch.starts;
   bandStarts(gray.rows, threads, starts);
@@ -338,6 +333,12 @@ WeightedHistogram edgeWeightedHistogram(const cv::Mat& f) {
 }
 
 EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads) {
+  EnhanceWorkspace workspace;
+  return enhance(gray, params, workspace, output, threads);
+}
+
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& scratch, cv::Mat output,
+                      int threads) {
   if (!gray.empty() && gray.type() != CV_8UC1) {
     throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
   }
@@ -354,7 +355,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
   result.poor_quality = isPoorQuality(result.lambda, params);
 
   if (params.tone_curve != ToneCurve::kGamma) {
-    return enhance8Bit(gray, params, output, threads, result);
+    return enhance8Bit(gray, params, output, threads, result, scratch);
   }
 
   // The paper's method. Step 4: a bright poor image is enhanced as its negative, and turned back
@@ -367,14 +368,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat 
     input = gray;
   }
 
-  // Float buffers are reused from call to call on each thread: fresh ones of this size would be
-  // fresh pages from the kernel, whose faults cost more than the arithmetic.
-  thread_local struct {
-    cv::Mat input_f, f, e, f_rounded, curve_f;
-    std::vector<int> starts;
-  } scratch;
-  // (The lambdas below run on other threads: they must reach these buffers through references,
-  // not by the thread_local's name.)
+  // The float buffers are the workspace's, reused from call to call.
   cv::Mat& input_f = scratch.input_f;
   cv::Mat& f = scratch.f;
   cv::Mat& e = scratch.e;

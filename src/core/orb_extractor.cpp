@@ -26,6 +26,7 @@ struct OrbExtractor::Workspace {
     cv::Mat smoothed;
     StageTimings timings;
   };
+  EnhanceWorkspace enhancement;
   PyramidLevels pyramid;
   std::vector<Level> levels;
   std::vector<std::vector<cv::KeyPoint>> keypoints;  // per level, in level coordinates
@@ -113,7 +114,7 @@ void ownOrRelease(cv::Mat& m) {
 }
 
 // The enhancement (enhance.h) of `gray` into out.image, or `gray` itself when it is off.
-void enhanceInto(const cv::Mat& gray, const Params& params, Extraction& out) {
+void enhanceInto(const cv::Mat& gray, const Params& params, EnhanceWorkspace& ws, Extraction& out) {
   out.lambda = 0.0;
   out.poor_quality = false;
   out.inverted = false;
@@ -122,7 +123,7 @@ void enhanceInto(const cv::Mat& gray, const Params& params, Extraction& out) {
     return;
   }
   ownOrRelease(out.image);
-  const EnhanceResult enhanced = enhance(gray, params.enhance, out.image, params.orb.threads);
+  const EnhanceResult enhanced = enhance(gray, params.enhance, ws, out.image, params.orb.threads);
   out.image = enhanced.image;
   out.lambda = enhanced.lambda;
   out.poor_quality = enhanced.poor_quality;
@@ -272,11 +273,11 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
   const OrbParams& orb = params_.orb;
   out.timings = StageTimings();
   out.keypoints.clear();
+  const auto ws = lease();
   Stopwatch clock;
-  enhanceInto(gray, params_, out);
+  enhanceInto(gray, params_, ws->enhancement, out);
   out.timings.enhance_ms = clock.lap();
   Stopwatch wall;
-  const auto ws = lease();
   ws->pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
   detectLevels(params_, options.mask, *ws, out);
   clock.lap();
@@ -293,9 +294,9 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
 
 void OrbExtractor::describe(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const {
   checkInput(gray, cv::Mat());
-  Extraction enhanced;
-  enhanceInto(gray, params_, enhanced);
   const auto ws = lease();
+  Extraction enhanced;
+  enhanceInto(gray, params_, ws->enhancement, enhanced);
   ws->pyramid.reset(enhanced.image, params_.orb.n_levels, params_.orb.scale_factor);
   const int n_levels = gray.empty() ? 0 : ws->pyramid.count();
   // The describable keypoints level by level (in their order within a level), in level coordinates.

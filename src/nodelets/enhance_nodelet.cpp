@@ -111,7 +111,8 @@ private:
     const auto start = std::chrono::steady_clock::now();
     EnhanceResult result;
     if (enabled) {
-      result = enhance(gray, params, view);
+      std::lock_guard<std::mutex> lock(workspace_mutex_);  // one frame at a time uses the buffers
+      result = enhance(gray, params, workspace_, view);
     } else {
       gray.copyTo(view);
     }
@@ -159,6 +160,8 @@ private:
   EnhanceConfig valid_ = EnhanceConfig::__getDefault__();  // the last configuration applied
   EnhanceParams params_ = toParams(valid_);
   bool enabled_ = true;
+  std::mutex workspace_mutex_;
+  EnhanceWorkspace workspace_;  // the enhancement's buffers, reused frame after frame
 };
 
 }  // namespace enhanced_orb
