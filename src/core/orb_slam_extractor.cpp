@@ -32,6 +32,7 @@ Params withOrbSlamSettings(Params params, int nfeatures, float scaleFactor, int 
 struct OrbSlamExtractor::State {
   OrbExtractor extractor;
   Extraction result;
+  cv::Mat ordered;  // the descriptors in ORB-SLAM3's order, reused frame after frame
 };
 
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
@@ -40,7 +41,7 @@ OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST,
                                    const Params& base)
     : state_(new State{OrbExtractor(withOrbSlamSettings(base, nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)),
-                       Extraction()}),
+                       Extraction(), cv::Mat()}),
       scale_factor_(scaleFactor) {
   const OrbParams& orb = state_->extractor.params().orb;
   for (int level = 0; level < orb.n_levels; ++level) {
@@ -83,7 +84,8 @@ int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std:
   // ORB-SLAM3's order: keypoints outside the lapping area from the front, inside it from the back.
   const int n = static_cast<int>(result.keypoints.size());
   keypoints.resize(static_cast<size_t>(n));
-  cv::Mat ordered(n, kDescriptorBytes, CV_8U);
+  cv::Mat& ordered = state_->ordered;
+  ordered.create(n, kDescriptorBytes, CV_8U);
   const bool lapping = vLappingArea.size() >= 2;
   int mono = 0;
   int stereo = n - 1;

@@ -51,28 +51,27 @@ std::vector<double> weightedCumulative(const Counts& counts, double alpha) {
   return c;
 }
 
-// The default mode's curve: LUT(i) = 255 (tau i / 255 + (1 - tau) C_w(i)); the identity for an
-// empty histogram.
-template <typename Counts>
-GammaLut equalizingCurve(const Counts& counts, double alpha, double tau) {
+// The curve LUT(i) = value(i, C_w(i)) of a histogram; the identity for an empty one.
+template <typename Counts, typename Value>
+GammaLut curveOf(const Counts& counts, double alpha, Value value) {
   const std::vector<double> c = weightedCumulative(counts, alpha);
   GammaLut curve{};
   for (int i = 0; i < 256; ++i) {
-    curve[i] = static_cast<float>(c.back() == 0.0 ? i : 255.0 * (tau * i / 255.0 + (1.0 - tau) * c[i]));
+    curve[i] = static_cast<float>(c.back() == 0.0 ? i : value(i, c[i]));
   }
   return curve;
+}
+
+// The default mode's curve: LUT(i) = 255 (tau i / 255 + (1 - tau) C_w(i)).
+template <typename Counts>
+GammaLut equalizingCurve(const Counts& counts, double alpha, double tau) {
+  return curveOf(counts, alpha, [tau](int i, double c) { return 255.0 * (tau * i / 255.0 + (1.0 - tau) * c); });
 }
 
 // The paper's curve, eqs 14-16: gamma_i = max(tau, 1 - C_wi), LUT(i) = 255 (i / 255)^gamma_i.
 template <typename Counts>
 GammaLut gammaCurve(const Counts& counts, double alpha, double tau) {
-  const std::vector<double> c = weightedCumulative(counts, alpha);
-  GammaLut curve{};
-  for (int i = 0; i < 256; ++i) {
-    const double gamma = c.back() == 0.0 ? 1.0 : std::max(tau, 1.0 - c[i]);
-    curve[i] = static_cast<float>(255.0 * std::pow(i / 255.0, gamma));
-  }
-  return curve;
+  return curveOf(counts, alpha, [tau](int i, double c) { return 255.0 * std::pow(i / 255.0, std::max(tau, 1.0 - c)); });
 }
 
 // tone_curve stretch as ALGORITHM.md defines it: lo is the lowest level with more than tau n of
