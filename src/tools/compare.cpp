@@ -14,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "enhanced_orb/evaluation/dataset.h"
 #include "enhanced_orb/evaluation/degrade.h"
@@ -58,6 +59,9 @@ options:
   --gaps LIST        --sequence frame gaps (default 1,5,10 at 20 Hz; 1,3,5 at 10 Hz)
   --sequence-every N --sequence: a relative-pose pair starts at every N-th frame (default 1)
   --poses FILE       --sequence on KITTI: the poses file (default DIR/poses.txt)
+  --write-sequence OUT  with --sequence (EuRoC): instead of comparing, write the frames of each
+                     light condition as a EuRoC folder OUT/<condition> (and OUT/<condition>/times.txt),
+                     the frames the comparison sees, for a SLAM system to run on
   --threads N        worker threads (default 2; each extraction itself runs on one)
   -h, --help         this text
 Exit codes: 0 done, 1 an input could not be read, 2 bad arguments.
@@ -87,7 +91,7 @@ bool parsePositive(const std::string& text, int& out) {
 }
 
 struct Options {
-  std::string lighting, euroc, sequence, poses, output = "results/compare", label = "default";
+  std::string lighting, euroc, sequence, poses, write_sequence, output = "results/compare", label = "default";
   std::vector<std::string> conditions;
   std::vector<int> gaps;
   int sequence_every = 1;
@@ -342,41 +346,125 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
   pairs_file.commit();
 }
 
-// Real camera motion under light that changes frame by frame: every method on the same degraded
-// frames (each frame degraded once per condition), relative pose between frames and stereo tracking.
-void compareSequence(const Options& o, const std::vector<Runner>& all) {
-  ev::Sequence seq = o.poses.empty() ? ev::readSequence(o.sequence) : ev::readKittiSequence(o.sequence, o.poses);
+// The frames of a sequence, decoded once, and the light conditions asked for.
+struct SequenceFrames {
+  ev::Sequence seq;
+  std::vector<ev::LightCondition> conditions;
+  bool stereo = false;
+  std::vector<cv::Mat> left, right;
+  int size() const { return static_cast<int>(left.size()); }
+};
+
+SequenceFrames readSequenceFrames(const Options& o) {
+  SequenceFrames f;
+  f.seq = o.poses.empty() ? ev::readSequence(o.sequence) : ev::readKittiSequence(o.sequence, o.poses);
+  const ev::Sequence& seq = f.seq;
   const int n = static_cast<int>(seq.frames.size());
   if (n < 2) {
     throw ev::DatasetError(o.sequence + ": fewer than two frames with a ground-truth pose");
   }
-  const std::vector<int> gaps = o.gaps.empty() ? ev::defaultGaps(seq.rate_hz) : o.gaps;
-  std::vector<ev::LightCondition> conditions = ev::lightConditions();
+  f.conditions = ev::lightConditions();
   if (!o.conditions.empty()) {
-    conditions.clear();
+    f.conditions.clear();
     for (const std::string& c : o.conditions) {
-      conditions.push_back({c});
+      f.conditions.push_back({c});
     }
   }
-  const bool stereo = seq.right.has_value() && !seq.right_frames.empty();
+  f.stereo = seq.right.has_value() && !seq.right_frames.empty();
+  f.left.resize(n);
+  f.right.resize(f.stereo ? n : 0);
+  parallelFor(n, o.threads, [&](int, int i) {
+    f.left[i] = ev::readGray(seq.frames[i]);
+    if (f.stereo) {
+      f.right[i] = ev::readGray(seq.right_frames[i]);
+    }
+  });
+  for (int i = 0; i < n; ++i) {
+    if (f.left[i].empty() || (f.stereo && f.right[i].empty())) {
+      throw ev::DatasetError((f.left[i].empty() ? seq.frames[i] : seq.right_frames[i]) + ": cannot be decoded");
+    }
+  }
+  return f;
+}
+
+// Every frame under one light condition, each degraded once; the right camera has its own noise.
+// Seeds follow the condition's name, so a run of some conditions repeats a full run's, and the
+// frames --write-sequence writes are the ones the evaluation sees.
+void degradeSequence(const SequenceFrames& f, const ev::LightCondition& light, int threads, std::vector<cv::Mat>& left,
+                     std::vector<cv::Mat>& right) {
+  std::uint64_t seed = 14695981039346656037ULL;  // FNV-1a of the name
+  for (char ch : light.name) {
+    seed = (seed ^ static_cast<unsigned char>(ch)) * 1099511628211ULL;
+  }
+  const int n = f.size();
+  left.assign(n, cv::Mat());
+  right.assign(f.stereo ? n : 0, cv::Mat());
+  parallelFor(n, threads, [&](int, int i) {
+    left[i] = light.apply(f.left[i], i, n, seed + 2ULL * i);
+    if (f.stereo) {
+      right[i] = light.apply(f.right[i], i, n, seed + 2ULL * i + 1);
+    }
+  });
+}
+
+// --write-sequence: each light condition as a EuRoC ASL folder of its own (OUT/<condition>/mav0 with
+// cam0, cam1, their sensor.yaml and data.csv, and the ground truth) for a SLAM system to run on, and
+// OUT/<condition>/times.txt: the frames' timestamps [ns], one per line, as ORB-SLAM's EuRoC examples
+// read them.
+void writeSequence(const Options& o) {
+  const SequenceFrames f = readSequenceFrames(o);
+  if (f.seq.format != "euroc") {
+    throw ev::DatasetError(o.sequence + ": --write-sequence writes EuRoC folders, from a EuRoC sequence only");
+  }
+  const fs::path mav0 = fs::path(f.seq.frames[0]).parent_path().parent_path().parent_path();
+  for (const ev::LightCondition& light : f.conditions) {
+    std::vector<cv::Mat> dl, dr;
+    degradeSequence(f, light, o.threads, dl, dr);
+    const fs::path out = fs::path(o.write_sequence) / light.name;
+    fs::create_directories(out);
+    std::ofstream times(out / "times.txt");
+    for (const std::string cam : {"cam0", "cam1"}) {
+      const bool left = cam == "cam0";
+      if (!left && !f.stereo) {
+        continue;
+      }
+      const fs::path dir = out / "mav0" / cam;
+      fs::create_directories(dir / "data");
+      fs::copy_file(mav0 / cam / "sensor.yaml", dir / "sensor.yaml", fs::copy_options::overwrite_existing);
+      std::ofstream csv(dir / "data.csv");
+      csv << "#timestamp [ns],filename\n";
+      for (int i = 0; i < f.size(); ++i) {
+        const fs::path name = fs::path(left ? f.seq.frames[i] : f.seq.right_frames[i]).filename();
+        if (!cv::imwrite((dir / "data" / name).string(), left ? dl[i] : dr[i])) {
+          throw ev::DatasetError((dir / "data" / name).string() + ": cannot be written");
+        }
+        csv << name.stem().string() << "," << name.string() << "\n";
+        if (left) {
+          times << name.stem().string() << "\n";
+        }
+      }
+    }
+    fs::copy(mav0 / "state_groundtruth_estimate0", out / "mav0" / "state_groundtruth_estimate0",
+             fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    std::cerr << "wrote " << out.string() << " (" << f.size() << " frames)\n";
+  }
+}
+
+// Real camera motion under light that changes frame by frame: every method on the same degraded
+// frames (each frame degraded once per condition), relative pose between frames and stereo tracking.
+void compareSequence(const Options& o, const std::vector<Runner>& all) {
+  const SequenceFrames frames = readSequenceFrames(o);
+  const ev::Sequence& seq = frames.seq;
+  const std::vector<ev::LightCondition>& conditions = frames.conditions;
+  const int n = frames.size();
+  const bool stereo = frames.stereo;
+  const std::vector<int> gaps = o.gaps.empty() ? ev::defaultGaps(seq.rate_hz) : o.gaps;
   std::cerr << "sequence " << seq.name << " (" << seq.format << "): " << n << " frames at " << seq.rate_hz << " Hz, "
             << (stereo ? "stereo" : "monocular") << ", gaps";
   for (int g : gaps) {
     std::cerr << " " << g;
   }
   std::cerr << "\n";
-  std::vector<cv::Mat> left(n), right(stereo ? n : 0);
-  parallelFor(n, o.threads, [&](int, int i) {
-    left[i] = ev::readGray(seq.frames[i]);
-    if (stereo) {
-      right[i] = ev::readGray(seq.right_frames[i]);
-    }
-  });
-  for (int i = 0; i < n; ++i) {
-    if (left[i].empty() || (stereo && right[i].empty())) {
-      throw ev::DatasetError((left[i].empty() ? seq.frames[i] : seq.right_frames[i]) + ": cannot be decoded");
-    }
-  }
   struct PosePair {
     int first, gap;
     ev::RelativePose truth;
@@ -400,19 +488,8 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
                "translation_m\n";
   for (size_t c = 0; c < conditions.size(); ++c) {
     const ev::LightCondition& light = conditions[c];
-    // Each frame degraded once, the same frames for every method; the right camera has its own
-    // noise. Seeds follow the condition's name, so a run of some conditions repeats a full run's.
-    std::uint64_t seed = 14695981039346656037ULL;  // FNV-1a of the name
-    for (char ch : light.name) {
-      seed = (seed ^ static_cast<unsigned char>(ch)) * 1099511628211ULL;
-    }
-    std::vector<cv::Mat> dl(n), dr(stereo ? n : 0);
-    parallelFor(n, o.threads, [&](int, int i) {
-      dl[i] = light.apply(left[i], i, n, seed + 2ULL * i);
-      if (stereo) {
-        dr[i] = light.apply(right[i], i, n, seed + 2ULL * i + 1);
-      }
-    });
+    std::vector<cv::Mat> dl, dr;
+    degradeSequence(frames, light, o.threads, dl, dr);
     for (size_t m = 0; m < all.size(); ++m) {
       const Runner& method = all[m];
       std::vector<ev::Features> fl(n), fr(stereo ? n : 0);
@@ -493,6 +570,8 @@ int main(int argc, char** argv) {
       o.euroc = v;
     } else if (arg == "--sequence") {
       o.sequence = v;
+    } else if (arg == "--write-sequence") {
+      o.write_sequence = v;
     } else if (arg == "--poses") {
       o.poses = v;
     } else if (arg == "--conditions") {
@@ -554,8 +633,17 @@ int main(int argc, char** argv) {
     std::cerr << "enhanced_orb_compare: " << enhanced_orb::joinMessages(problems) << "\n";
     return 2;
   }
+  if (!o.write_sequence.empty() && (o.sequence.empty() || !o.lighting.empty() || !o.euroc.empty())) {
+    std::cerr << "enhanced_orb_compare: --write-sequence goes with --sequence alone\n";
+    return 2;
+  }
   try {
     cv::setNumThreads(1);
+    if (!o.write_sequence.empty()) {
+      writeSequence(o);
+      std::cout << "enhanced_orb_compare: wrote " << o.write_sequence << "\n";
+      return 0;
+    }
     const std::vector<Runner> all = runners(o);
     fs::create_directories(o.output);
     if (!o.lighting.empty()) {

@@ -16,7 +16,10 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+
+#include "enhanced_orb/evaluation/sequence.h"
 
 #include "test_images.h"
 
@@ -233,6 +236,54 @@ TEST_F(Tools, CompareRunsTheSequenceEvaluationOnEurocAsShipped) {
   }
   EXPECT_EQ(frames, 2 * 299);
   EXPECT_GT(tracked, 250);  // in unchanged light nearly every frame is tracked
+}
+
+TEST_F(Tools, CompareWritesEachLightConditionAsAEurocFolder) {
+  EXPECT_EQ(run(kCompare + " --write-sequence " + quoted(dir_ / "w")).code, 2);  // needs --sequence
+  const std::string moving = ENHANCED_ORB_MOVING_DIR;
+  if (!fs::exists(moving + "/mav0/cam0/sensor.yaml")) {
+    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
+      FAIL() << moving << " is missing";
+    }
+    GTEST_SKIP() << moving << " is missing";
+  }
+  const fs::path out = dir_ / "frames";
+  const Outcome r = run(kCompare + " --sequence " + moving + " --conditions unchanged,dip --write-sequence " +
+                        quoted(out) + " --output " + quoted(dir_ / "not_written"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "not_written"));
+  const enhanced_orb::evaluation::Sequence original = enhanced_orb::evaluation::readSequence(moving);
+  const int n = static_cast<int>(original.frames.size());
+  for (const std::string condition : {"unchanged", "dip"}) {
+    // What was written reads back as the same sequence: frames, cameras, ground truth.
+    const enhanced_orb::evaluation::Sequence written =
+        enhanced_orb::evaluation::readSequence((out / condition).string());
+    ASSERT_EQ(static_cast<int>(written.frames.size()), n) << condition;
+    ASSERT_EQ(written.right_frames.size(), original.right_frames.size()) << condition;
+    EXPECT_EQ(cv::norm(cv::Mat(written.poses[n / 2]), cv::Mat(original.poses[n / 2])), 0.0) << condition;
+    std::ifstream times(out / condition / "times.txt");
+    std::vector<std::string> stamps;
+    for (std::string line; std::getline(times, line);) {
+      stamps.push_back(line);
+    }
+    ASSERT_EQ(static_cast<int>(stamps.size()), n) << condition;
+    EXPECT_EQ(stamps[7] + ".png", fs::path(original.frames[7]).filename().string());
+  }
+  // Unchanged light writes the frames as recorded; in the dip the middle frame is far darker.
+  const enhanced_orb::evaluation::Sequence unchanged =
+      enhanced_orb::evaluation::readSequence((out / "unchanged").string());
+  const enhanced_orb::evaluation::Sequence dip = enhanced_orb::evaluation::readSequence((out / "dip").string());
+  for (int i : {0, n / 2, n - 1}) {
+    const cv::Mat a = cv::imread(original.frames[i], cv::IMREAD_GRAYSCALE);
+    EXPECT_EQ(cv::norm(a, cv::imread(unchanged.frames[i], cv::IMREAD_GRAYSCALE), cv::NORM_INF), 0.0) << i;
+    EXPECT_EQ(cv::norm(cv::imread(original.right_frames[i], cv::IMREAD_GRAYSCALE),
+                       cv::imread(unchanged.right_frames[i], cv::IMREAD_GRAYSCALE), cv::NORM_INF),
+              0.0)
+        << i;
+  }
+  const cv::Scalar bright = cv::mean(cv::imread(original.frames[n / 2], cv::IMREAD_GRAYSCALE));
+  const cv::Scalar dark = cv::mean(cv::imread(dip.frames[n / 2], cv::IMREAD_GRAYSCALE));
+  EXPECT_LT(dark[0], 0.5 * bright[0]);
 }
 
 TEST_F(Tools, CompareSamplesTheStereoPairsAsAsked) {

@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""The table of scripts/orbslam3_eval.sh: ORB-SLAM3 with its own extractor and with enhanced_orb's,
+stereo and monocular, per light condition, over the repeated runs.
+
+    python3 scripts/orbslam3/report.py RUNS DATA [docs/RESULTS.md]
+
+RUNS holds RUNS/<build>/<sensor>/<condition>/<repeat>/ with log.txt and f_run.txt, and RUNS/../frames/
+<condition>/times.txt the frames each run was given (ORB-SLAM3's
+EuRoC trajectory: timestamp [ns], position, quaternion x y z w; the frames of its largest map that
+were tracked); DATA is the EuRoC folder the frames came from (its ground truth and cam0's T_BS).
+With a third argument the section between <!-- orbslam3:begin --> and <!-- orbslam3:end --> of
+that file is replaced (appended when the markers are missing).
+
+Per run: frames tracked = frames in the trajectory (largest map, tracking not lost) over the frames
+given; "local map lost" = ORB-SLAM3's "Fail to track local map!" events; maps = maps started ("New
+Map created", the first one included: every further one is a reset or a new map after tracking was
+lost); ATE = RMSE of the camera positions after aligning them to the ground truth (SE(3) stereo,
+Sim(3) monocular, Umeyama), ground truth T_WB(t) T_BS, matched within 5 ms; repeated timestamps
+(ORB-SLAM3 writes the last pose again while lost) dropped."""
+import pathlib
+import re
+import statistics
+import sys
+
+import numpy as np
+
+# The sequence evaluation's light conditions in its order (enhanced_orb_compare --help).
+CONDITIONS = ["unchanged", "dim", "dark", "dusk", "lights_out", "flicker", "lamp", "dip"]
+
+
+def run_name(run):
+    """stock, or enhanced_orb-<preset>."""
+    return "ORB-SLAM3's own" if run == "stock" else "enhanced_orb %s" % run.split("-", 1)[1]
+
+
+def read_sensor_T_BS(path):
+    text = pathlib.Path(path).read_text()
+    block = text[text.index("T_BS"):]
+    numbers = re.search(r"data:\s*\[([^\]]*)\]", block).group(1)
+    return np.array([float(v) for v in numbers.replace("\n", " ").split(",")]).reshape(4, 4)
+
+
+def quaternion_matrix(w, x, y, z):
+    n = np.sqrt(w * w + x * x + y * y + z * z)
+    w, x, y, z = w / n, x / n, y / n, z / n
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def ground_truth(data):
+    """Camera (cam0) positions in the world frame by timestamp [ns]."""
+    mav0 = pathlib.Path(data) / "mav0" if (pathlib.Path(data) / "mav0").is_dir() else pathlib.Path(data)
+    T_BS = read_sensor_T_BS(mav0 / "cam0" / "sensor.yaml")
+    stamps, positions = [], []
+    for line in (mav0 / "state_groundtruth_estimate0" / "data.csv").read_text().splitlines():
+        if not line.strip() or line.startswith("#"):
+            continue
+        v = [float(x) for x in line.split(",")[:8]]
+        T = np.eye(4)
+        T[:3, :3] = quaternion_matrix(v[4], v[5], v[6], v[7])
+        T[:3, 3] = v[1:4]
+        stamps.append(int(line.split(",")[0]))
+        positions.append((T @ T_BS)[:3, 3])
+    order = np.argsort(stamps)
+    return np.array(stamps, dtype=np.int64)[order], np.array(positions)[order]
+
+
+def umeyama(source, target, with_scale):
+    """s, R, t minimising |target - (s R source + t)|^2 (Umeyama 1991)."""
+    mu_s, mu_t = source.mean(axis=0), target.mean(axis=0)
+    a, b = source - mu_s, target - mu_t
+    cov = b.T @ a / len(source)
+    U, D, Vt = np.linalg.svd(cov)
+    S = np.eye(3)
+    if np.linalg.det(U) * np.linalg.det(Vt) < 0:
+        S[2, 2] = -1
+    R = U @ S @ Vt
+    s = np.trace(np.diag(D) @ S) / (a * a).sum(axis=1).mean() if with_scale else 1.0
+    return s, R, mu_t - s * R @ mu_s
+
+
+def run_result(run_dir, gt_stamps, gt_positions, n_frames, with_scale):
+    log = (run_dir / "log.txt").read_text(errors="replace") if (run_dir / "log.txt").exists() else ""
+    result = {
+        "lost_local_map": log.count("Fail to track local map!"),
+        "maps": log.count("New Map created"),
+        "tracked": 0.0,
+        "ate": None,
+        "crashed": "exit " in log or not (run_dir / "f_run.txt").exists(),
+    }
+    trajectory = run_dir / "f_run.txt"
+    if not trajectory.exists():
+        return result
+    seen, estimated, truth = set(), [], []
+    for line in trajectory.read_text().splitlines():
+        fields = line.split()
+        if len(fields) < 8:
+            continue
+        stamp = int(round(float(fields[0])))
+        if stamp in seen:
+            continue
+        seen.add(stamp)
+        k = int(np.searchsorted(gt_stamps, stamp))
+        best = min((j for j in (k - 1, k) if 0 <= j < len(gt_stamps)), key=lambda j: abs(gt_stamps[j] - stamp))
+        if abs(gt_stamps[best] - stamp) <= 5_000_000:
+            estimated.append([float(x) for x in fields[1:4]])
+            truth.append(gt_positions[best])
+    result["tracked"] = len(seen) / n_frames
+    if len(estimated) >= 10:
+        est, gt = np.array(estimated), np.array(truth)
+        s, R, t = umeyama(est, gt, with_scale)
+        residual = gt - (s * (R @ est.T).T + t)
+        result["ate"] = float(np.sqrt((residual ** 2).sum(axis=1).mean()))
+    return result
+
+
+def fmt_ate(values):
+    values = [v for v in values if v is not None]
+    if not values:
+        return "-"
+    mm = [1000 * v for v in values]
+    if len(mm) == 1:
+        return f"{mm[0]:.1f}"
+    return f"{statistics.median(mm):.1f} ({min(mm):.1f}-{max(mm):.1f})"
+
+
+def main(runs, data, doc=None):
+    runs = pathlib.Path(runs)
+    gt_stamps, gt_positions = ground_truth(data)
+    builds = sorted((p.name for p in runs.iterdir() if p.is_dir()), key=lambda b: (b != "stock", b != "enhanced_orb-default", b))
+    lines = []
+    for sensor in ("stereo", "mono"):
+        found = {p.name for b in builds for p in (runs / b / sensor).glob("*") if p.is_dir()}
+        conditions = [c for c in CONDITIONS if c in found] + sorted(found - set(CONDITIONS))
+        if not conditions:
+            continue
+        lines.append(f"**{'Stereo' if sensor == 'stereo' else 'Monocular'}** (`{sensor}_euroc`; "
+                     f"ATE: median over the runs, range in brackets, {'SE(3)' if sensor == 'stereo' else 'Sim(3)'} "
+                     "alignment)\n")
+        lines += ["| light | extractor | frames tracked | local map lost | maps | ATE mm |",
+                  "| --- | --- | ---: | ---: | ---: | ---: |"]
+        for condition in conditions:
+            for b in builds:
+                results = []
+                for repeat in sorted((runs / b / sensor / condition).glob("*")):
+                    times = runs.parent / "frames" / condition / "times.txt"  # the frames given
+                    n_frames = len(times.read_text().split()) if times.exists() else len(gt_stamps)
+                    results.append(run_result(repeat, gt_stamps, gt_positions, n_frames, sensor == "mono"))
+                if not results:
+                    continue
+                tracked = statistics.mean(r["tracked"] for r in results)
+                lost = statistics.mean(r["lost_local_map"] for r in results)
+                maps = statistics.mean(r["maps"] for r in results)
+                crashed = sum(r["crashed"] for r in results)
+                note = f" ({crashed} of {len(results)} did not finish)" if crashed else ""
+                lines.append(f"| {condition} | {run_name(b)} | {tracked:.3f}{note} | {lost:.1f} | {maps:.1f} | "
+                             f"{fmt_ate([r['ate'] for r in results])} |")
+        repeats = max(len(list((runs / b / sensor / c).glob("*"))) for b in builds for c in conditions)
+        lines.append(f"\n{repeats} run(s) per cell; tracked, local map lost and maps are means over them.\n")
+    table = "\n".join(lines)
+    print(table)
+    if doc:
+        path = pathlib.Path(doc)
+        text = path.read_text()
+        section = f"<!-- orbslam3:begin -->\n{table}\n<!-- orbslam3:end -->"
+        if "<!-- orbslam3:begin -->" in text:
+            text = re.sub(r"<!-- orbslam3:begin -->.*<!-- orbslam3:end -->", lambda _: section, text, flags=re.S)
+        else:
+            text = text.rstrip("\n") + "\n\n" + section + "\n"
+        path.write_text(text)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) not in (3, 4):
+        sys.exit(__doc__)
+    main(*sys.argv[1:])

@@ -1,0 +1,221 @@
+#!/usr/bin/env bash
+# enhanced_orb inside ORB-SLAM3 v1.0: builds a stock and an adapted copy of a user's ORB-SLAM3 source
+# tree (the adapted one with enhanced_orb::OrbSlamExtractor in place of its ORBextractor, as
+# docs/ORB_SLAM3.md describes), runs both, stereo and monocular, on a EuRoC folder under every light
+# condition of the sequence evaluation (enhanced_orb_compare --write-sequence), and prints a table:
+# frames tracked, "Fail to track local map" events, map resets, maps, ATE RMSE after alignment.
+#
+#   bash scripts/orbslam3_eval.sh SRC VOCABULARY DATA [WORK]
+#
+#   SRC         an ORB-SLAM3 v1.0 source tree (git clone of UZ-SLAMLab/ORB_SLAM3, tag v1.0); it is
+#               copied, never changed
+#   VOCABULARY  ORBvoc.txt (the official one, unpacked from Vocabulary/ORBvoc.txt.tar.gz); the same
+#               file for both builds. scripts/orbslam3/train_vocabulary.sh trains a replacement.
+#   DATA        a EuRoC ASL folder with cam0, cam1 and state_groundtruth_estimate0 (e.g.
+#               ../shared/data/euroc/MH_01_easy_moving)
+#   WORK        scratch folder for the builds, frames and runs (default /tmp/enhanced_orb_orbslam3);
+#               builds are kept, so a second run only runs
+#
+# Environment: REPEATS (default 3; ORB-SLAM3 is multi-threaded and not deterministic),
+# CONDITIONS (default: every condition of the sequence evaluation), SENSORS (default "stereo mono"),
+# PRESETS (default "default motion": the adapted build runs once per preset, through
+# ENHANCED_ORB_CONFIG=config/<preset>.yaml, docs/ORB_SLAM3.md), PANGOLIN_SRC (a Pangolin v0.6
+# source tree to build into WORK when Pangolin is not installed; the viewer stays off).
+#
+# ORB-SLAM3 is GPL-3: it is built and run here for evaluation only, in WORK; nothing of it enters
+# this repository. Time here (2 cores): about 70 minutes to build both copies, 20-30 s per run.
+set -euo pipefail
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+if (($# < 3)); then
+  sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'
+  exit 2
+fi
+SRC=$(realpath "$1")
+VOCABULARY=$(realpath "$2")
+DATA=$(realpath "$3")
+WORK=$(realpath -m "${4:-/tmp/enhanced_orb_orbslam3}")
+REPEATS=${REPEATS:-3}
+SENSORS=${SENSORS:-stereo mono}
+PRESETS=${PRESETS:-default motion}
+for p in $PRESETS; do
+  [ -f "$ROOT/config/$p.yaml" ] || { echo "orbslam3_eval: no preset file config/$p.yaml" >&2; exit 2; }
+done
+JOBS=$(nproc)
+for f in "$SRC/CMakeLists.txt" "$SRC/src/ORBextractor.cc" "$SRC/include/ORBextractor.h" \
+  "$SRC/Examples/Stereo/stereo_euroc.cc" "$SRC/Examples/Monocular/mono_euroc.cc"; do
+  [ -f "$f" ] || { echo "orbslam3_eval: $f is missing: SRC must be an ORB-SLAM3 v1.0 source tree" >&2; exit 2; }
+done
+[ -f "$VOCABULARY" ] || { echo "orbslam3_eval: no vocabulary file $VOCABULARY" >&2; exit 2; }
+[ -f "$DATA/mav0/cam0/data.csv" ] || [ -f "$DATA/cam0/data.csv" ] \
+  || { echo "orbslam3_eval: $DATA is not a EuRoC ASL folder (no mav0/cam0/data.csv)" >&2; exit 2; }
+mkdir -p "$WORK"
+log() { echo "orbslam3_eval: $*"; }
+
+# --- what it needs ---------------------------------------------------------------------------------
+PACKAGES=(build-essential cmake libopencv-dev libeigen3-dev libboost-serialization-dev libssl-dev
+  python3-numpy libglew-dev libepoxy-dev libgl1-mesa-dev libwayland-dev libxkbcommon-dev wayland-protocols)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  log "installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+[ -f "$ROOT/devel/lib/libenhanced_orb_core.so" ] && [ -x "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" ] \
+  || bash "$ROOT/scripts/setup.sh"
+
+# --- Pangolin (ORB-SLAM3 links it even with the viewer off) ----------------------------------------
+PANGOLIN_ARGS=()
+if [ -n "${PANGOLIN_SRC:-}" ]; then
+  if [ ! -f "$WORK/pangolin/install/.done" ]; then
+    log "building Pangolin from $PANGOLIN_SRC (log: $WORK/pangolin/build.log)"
+    rm -rf "$WORK/pangolin" && mkdir -p "$WORK/pangolin"
+    cp -r "$PANGOLIN_SRC" "$WORK/pangolin/src"
+    # gcc 12 no longer includes <limits> through <cmath>
+    grep -q "#include <limits>" "$WORK/pangolin/src/include/pangolin/gl/colour.h" \
+      || sed -i 's|#include <stdexcept>|#include <stdexcept>\n#include <limits>|' \
+        "$WORK/pangolin/src/include/pangolin/gl/colour.h"
+    cmake -S "$WORK/pangolin/src" -B "$WORK/pangolin/build" -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_INSTALL_PREFIX="$WORK/pangolin/install" -DBUILD_EXAMPLES=OFF -DBUILD_TOOLS=OFF \
+      -DBUILD_PANGOLIN_PYTHON=OFF -DBUILD_PANGOLIN_VIDEO=OFF -DBUILD_TESTS=OFF \
+      >"$WORK/pangolin/build.log" 2>&1
+    make -C "$WORK/pangolin/build" -j"$JOBS" install >>"$WORK/pangolin/build.log" 2>&1 \
+      || { tail -n 30 "$WORK/pangolin/build.log"; exit 1; }
+    touch "$WORK/pangolin/install/.done"
+  fi
+  PANGOLIN_ARGS=(-DCMAKE_PREFIX_PATH="$WORK/pangolin/install")
+  export LD_LIBRARY_PATH="$WORK/pangolin/install/lib:${LD_LIBRARY_PATH:-}"
+fi
+
+# --- the two copies ---------------------------------------------------------------------------------
+# Both: C++14 (gcc 12 defaults to C++17, where Eigen's aligned allocation differs from the C++14
+# library's), only the two EuRoC examples, the viewer off. The adapted copy also: ORBextractor.h
+# replaced by a class deriving from enhanced_orb::OrbSlamExtractor, ORBextractor.cc left out,
+# enhanced_orb_core linked. Thirdparty (DBoW2, g2o) is built once and shared.
+prepare_copy() {  # NAME
+  local dst=$WORK/$1
+  rm -rf "$dst" && mkdir -p "$dst/Examples/Stereo" "$dst/Examples/Monocular"
+  cp -r "$SRC/include" "$SRC/src" "$dst/"
+  [ -d "$SRC/cmake_modules" ] && cp -r "$SRC/cmake_modules" "$dst/"
+  cp "$SRC"/Examples/Stereo/{stereo_euroc.cc,EuRoC.yaml} "$dst/Examples/Stereo/"
+  cp "$SRC"/Examples/Monocular/{mono_euroc.cc,EuRoC.yaml} "$dst/Examples/Monocular/"
+  if [ "$1" = stock ]; then
+    cp -r "$SRC/Thirdparty" "$dst/"
+  else
+    ln -s ../stock/Thirdparty "$dst/Thirdparty"
+  fi
+  sed -i 's/ORB_SLAM3::System::STEREO, *true)/ORB_SLAM3::System::STEREO, false)/' "$dst/Examples/Stereo/stereo_euroc.cc"
+  sed -i 's/ORB_SLAM3::System::MONOCULAR, *true)/ORB_SLAM3::System::MONOCULAR, false)/' \
+    "$dst/Examples/Monocular/mono_euroc.cc"
+  # The library part of CMakeLists.txt (everything before "# Build examples"), then two examples.
+  sed -n '/^# Build examples/q;p' "$SRC/CMakeLists.txt" \
+    | sed -e 's/-std=c++11/-std=c++14/' -e '/^add_subdirectory(Thirdparty\/g2o)/d' >"$dst/CMakeLists.txt"
+  if [ "$1" != stock ]; then
+    sed -i '/src\/ORBextractor.cc/d' "$dst/CMakeLists.txt"
+    cat >>"$dst/CMakeLists.txt" <<EOF
+# enhanced_orb in place of ORBextractor
+target_include_directories(\${PROJECT_NAME} PUBLIC $ROOT/include)
+target_link_libraries(\${PROJECT_NAME} $ROOT/devel/lib/libenhanced_orb_core.so)
+EOF
+    cat >"$dst/include/ORBextractor.h" <<'EOF'
+// ORBextractor: enhanced_orb's OrbSlamExtractor under the name ORB-SLAM3 uses.
+#ifndef ORBEXTRACTOR_H
+#define ORBEXTRACTOR_H
+
+#include <enhanced_orb/orb_slam_extractor.h>
+
+namespace ORB_SLAM3 {
+class ORBextractor : public enhanced_orb::OrbSlamExtractor {
+public:
+  using enhanced_orb::OrbSlamExtractor::OrbSlamExtractor;
+};
+}  // namespace ORB_SLAM3
+
+#endif
+EOF
+  fi
+  cat >>"$dst/CMakeLists.txt" <<'EOF'
+set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${PROJECT_SOURCE_DIR}/Examples/Stereo)
+add_executable(stereo_euroc Examples/Stereo/stereo_euroc.cc)
+target_link_libraries(stereo_euroc ${PROJECT_NAME})
+set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${PROJECT_SOURCE_DIR}/Examples/Monocular)
+add_executable(mono_euroc Examples/Monocular/mono_euroc.cc)
+target_link_libraries(mono_euroc ${PROJECT_NAME})
+EOF
+}
+
+build_thirdparty() {
+  local tp=$WORK/stock/Thirdparty
+  for lib in DBoW2 g2o; do
+    if [ ! -f "$tp/$lib/lib/lib$lib.so" ]; then
+      log "building $lib"
+      cmake -S "$tp/$lib" -B "$tp/$lib/build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-std=c++14 \
+        >"$tp/$lib/build.log" 2>&1
+      make -C "$tp/$lib/build" -j"$JOBS" >>"$tp/$lib/build.log" 2>&1 || { tail -n 30 "$tp/$lib/build.log"; exit 1; }
+    fi
+  done
+}
+
+build_copy() {  # NAME
+  local dst=$WORK/$1
+  if [ ! -x "$dst/Examples/Stereo/stereo_euroc" ] || [ ! -x "$dst/Examples/Monocular/mono_euroc" ]; then
+    log "building ORB-SLAM3 ($1; log: $dst/build.log)"
+    cmake -S "$dst" -B "$dst/build" -DCMAKE_BUILD_TYPE=Release "${PANGOLIN_ARGS[@]}" >"$dst/build.log" 2>&1 \
+      || { tail -n 30 "$dst/build.log"; exit 1; }
+    make -C "$dst/build" -j"$JOBS" stereo_euroc mono_euroc >>"$dst/build.log" 2>&1 \
+      || { grep -E "error" "$dst/build.log" | head -n 30; exit 1; }
+  fi
+}
+
+for b in stock enhanced_orb; do
+  [ -f "$WORK/$b/CMakeLists.txt" ] || prepare_copy "$b"
+  [ "$b" = stock ] && build_thirdparty
+  build_copy "$b"
+done
+
+# --- the light conditions: one EuRoC folder each, every frame degraded once -------------------------
+if [ ! -f "$WORK/frames/.done" ]; then
+  log "writing the frames of every light condition to $WORK/frames"
+  rm -rf "$WORK/frames"
+  "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --sequence "$DATA" --write-sequence "$WORK/frames" \
+    ${CONDITIONS:+--conditions "${CONDITIONS// /,}"}
+  touch "$WORK/frames/.done"
+fi
+CONDITIONS=${CONDITIONS:-$(cd "$WORK/frames" && ls -d */ | tr -d / | tr '\n' ' ')}
+
+# --- the runs -------------------------------------------------------------------------------------
+# RUN is "stock" or "enhanced_orb-<preset>".
+run_one() {  # RUN SENSOR CONDITION REPEAT
+  local dir=$WORK/runs/$1/$2/$3/$4 build=${1%%-*} exe settings config=
+  [ -f "$dir/done" ] && return 0
+  rm -rf "$dir" && mkdir -p "$dir"
+  if [ "$2" = stereo ]; then
+    exe=$WORK/$build/Examples/Stereo/stereo_euroc settings=$WORK/$build/Examples/Stereo/EuRoC.yaml
+  else
+    exe=$WORK/$build/Examples/Monocular/mono_euroc settings=$WORK/$build/Examples/Monocular/EuRoC.yaml
+  fi
+  [ "$build" = stock ] || config=$ROOT/config/${1#*-}.yaml
+  (cd "$dir" && ENHANCED_ORB_CONFIG=$config timeout 900 "$exe" "$VOCABULARY" "$settings" "$WORK/frames/$3" \
+    "$WORK/frames/$3/times.txt" run >log.txt 2>&1) || echo "exit $?" >>"$dir/log.txt"
+  touch "$dir/done"
+}
+RUNS="stock"
+for p in $PRESETS; do RUNS="$RUNS enhanced_orb-$p"; done
+total=0
+for b in $RUNS; do for s in $SENSORS; do for c in $CONDITIONS; do for r in $(seq 1 "$REPEATS"); do
+  total=$((total + 1))
+done; done; done; done
+n=0
+for r in $(seq 1 "$REPEATS"); do for c in $CONDITIONS; do for s in $SENSORS; do for b in $RUNS; do
+  n=$((n + 1))
+  log "run $n/$total: $b $s $c #$r"
+  run_one "$b" "$s" "$c" "$r"
+done; done; done; done
+
+python3 "$ROOT/scripts/orbslam3/report.py" "$WORK/runs" "$DATA" | tee "$WORK/results.md"
+log "table in $WORK/results.md"
