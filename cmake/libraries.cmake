@@ -28,6 +28,16 @@ if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64" AND NOT ENHANCED_ORB_PORTABLE)
   list(APPEND CORE_KERNELS ${X86_KERNELS_AVX2})
 endif()
 
+# Which kernel sets this build has, as compile definitions of `target` (the library's dispatch and
+# the tests that compare the kernels read them).
+function(enhanced_orb_kernel_definitions target)
+  foreach(kernels X86 NEON)
+    if(ENHANCED_ORB_${kernels}_KERNELS)
+      target_compile_definitions(${target} PRIVATE ENHANCED_ORB_${kernels}_KERNELS)
+    endif()
+  endforeach()
+endfunction()
+
 # The method, free of ROS: what nodelets, tools, benchmarks and tests share.
 add_library(enhanced_orb_core
   ${ENHANCED_ORB_ROOT}/src/core/noise.cpp
@@ -51,11 +61,7 @@ target_include_directories(enhanced_orb_core PRIVATE ${ENHANCED_ORB_ROOT}/src/co
 # No fused multiply-add where the source has none: the descriptor pattern's rotation rounds as the
 # installed cv::ORB does (rbrief.cpp decides how), whatever instruction set a file is built for.
 target_compile_options(enhanced_orb_core PRIVATE ${WARNINGS} -ffp-contract=off)
-foreach(kernels X86 NEON)
-  if(ENHANCED_ORB_${kernels}_KERNELS)
-    target_compile_definitions(enhanced_orb_core PRIVATE ENHANCED_ORB_${kernels}_KERNELS)
-  endif()
-endforeach()
+enhanced_orb_kernel_definitions(enhanced_orb_core)
 target_link_libraries(enhanced_orb_core ${OpenCV_LIBRARIES})
 
 # The evaluation, free of ROS: dataset reader, degradations, the compared methods, metrics.

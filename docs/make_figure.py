@@ -43,7 +43,7 @@ def main():
         src = os.path.join(tmp, "scene.png")
         cv2.imwrite(src, dark)
         panels = []
-        for name, flags in (("default", []), ("paper", ["--preset", "paper"]), ("original", ["--baseline"])):
+        for name, flags in (("default", []), ("paper", ["--preset", "paper"]), ("original", ["--preset", "baseline"])):
             out = os.path.join(tmp, name)
             subprocess.run([args.tool, *flags, "--max-features", "1000", "--save-annotated", src, "--output", out],
                            check=True, stdout=subprocess.DEVNULL)

@@ -55,5 +55,5 @@ for _ in $(seq 100); do  # the master roslaunch starts
   sleep 0.3
 done
 status=0
-python3 "$ROOT/nodes/demo_monitor.py" --output "$OUTPUT" --frames "$FRAMES" --bag "$BAG" || status=$?
+python3 "$ROOT/scripts/demo_monitor.py" --output "$OUTPUT" --frames "$FRAMES" --bag "$BAG" || status=$?
 exit $status

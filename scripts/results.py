@@ -332,7 +332,7 @@ def main():
     if pipeline:
         w("EnhanceNodelet → ExtractNodelet in one manager (4 worker threads, config/default.yaml: the default "
           "mode at 1000 features, `threads` 1), mono (cam0), fed the "
-          "shared EuRoC frames from a separate process (`nodes/pipeline_benchmark.py`): as fast as the "
+          "shared EuRoC frames from a separate process (`bench/pipeline_benchmark.py`): as fast as the "
           "chain takes them with at most 4 in flight, then at 20 Hz stamped on sending; then with the "
           "second camera's chain (cam1) in the same manager, both cameras' frames sent together, as a "
           "stereo driver sends them (\"stereo\" rows: pairs per second, latency of every frame of both).\n")

@@ -78,7 +78,7 @@ sleep 5
 roslaunch enhanced_orb pipeline.launch camera:=cam1 manager:=/cam0/enhanced_orb_manager >"$ROS_HOME/pipeline1.log" 2>&1 &
 LAUNCH1=$!
 trap 'kill -INT $LAUNCH $LAUNCH1 2>/dev/null || true; wait $LAUNCH $LAUNCH1 2>/dev/null || true; rm -rf "$(dirname "$BAG")"; [ "$KEEP_COMPARE" = true ] || rm -rf "$COMPARE"' EXIT
-python3 "$ROOT/nodes/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv" \
+python3 "$ROOT/bench/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv" \
   --stereo-topic /cam1/image_raw --stereo-camera cam1
 
 python3 "$ROOT/scripts/results.py" "$OUT"

@@ -11,11 +11,7 @@ enhanced_orb_add_gtest(test_identity ${ENHANCED_ORB_ROOT}/test/unit/test_identit
 target_link_libraries(test_identity enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})
 target_include_directories(test_identity PRIVATE ${ENHANCED_ORB_ROOT}/src/core)
 target_compile_definitions(test_identity PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}")
-foreach(kernels X86 NEON)
-  if(ENHANCED_ORB_${kernels}_KERNELS)
-    target_compile_definitions(test_identity PRIVATE ENHANCED_ORB_${kernels}_KERNELS)
-  endif()
-endforeach()
+enhanced_orb_kernel_definitions(test_identity)
 # The drop-in adapters (cv::Feature2D, ORB-SLAM's extractor); they read the package's config files.
 enhanced_orb_add_gtest(test_adapters ${ENHANCED_ORB_ROOT}/test/unit/test_adapters.cpp)
 target_link_libraries(test_adapters enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})

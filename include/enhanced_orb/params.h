@@ -32,10 +32,11 @@ enum class ToneCurve {
 
 // Named parameter sets.
 enum class Preset {
-  kDefault,  // the default mode (the member initialisers)
-  kPaper,    // Dai & Wu's method as published (ALGORITHM.md)
-  kStretch,  // the default mode with the raw tone order: well-exposed scenes whose light changes locally
-  kMotion,   // the default mode with its candidates chosen by the frame's noise: a moving camera
+  kDefault,   // the default mode (the member initialisers)
+  kPaper,     // Dai & Wu's method as published (ALGORITHM.md)
+  kStretch,   // the default mode with the raw tone order: well-exposed scenes whose light changes locally
+  kMotion,    // the default mode with its candidates chosen by the frame's noise: a moving camera
+  kBaseline,  // the paper's original ORB: no enhancement, FAST 20 everywhere (Params::baseline())
 };
 
 // How the FAST threshold of each grid cell is chosen.
@@ -128,6 +129,23 @@ std::vector<std::string> paramNames();
 // for a name setParam() does not know.
 std::optional<std::string> paramText(const Params& params, const std::string& name);
 
+// One row of the parameter table behind setParam(), paramText(), validate()'s range checks and the
+// tools' usage text: the ROS name, the type ("bool", "int", "double", or the names an enum reads:
+// "auto|always|never"), the range for numbers, the default mode's value and the meaning.
+struct ParamInfo {
+  std::string name;
+  std::string type;
+  bool has_range = false;
+  double lo = 0.0, hi = 0.0;
+  std::string default_text;
+  std::string meaning;
+};
+std::vector<ParamInfo> paramTable();
+
+// The table as command-line options, two lines each: "  --alpha X in [0, 1] (default 0.5)", then
+// the meaning.
+std::string paramUsage();
+
 // The parameters that have no effect under `params`, each with the reason ("std_threshold: only
 // used when gamma_mode is auto"), so that a tool or nodelet can say so when one of them is set.
 std::vector<std::string> inactiveParameters(const Params& params);
@@ -144,7 +162,7 @@ const char* toString(Preset preset);
 bool parseGammaMode(const std::string& name, GammaMode& out);
 bool parseThresholdMode(const std::string& name, ThresholdMode& out);
 bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize", "stretch"
-bool parsePreset(const std::string& name, Preset& out);        // "default", "paper", "stretch", "motion"
+bool parsePreset(const std::string& name, Preset& out);        // "default", "paper", "stretch", "motion", "baseline"
 // The names each parser reads, for messages: "default, paper or stretch".
 std::string toneCurveNames();
 std::string presetNames();

@@ -1,23 +1,15 @@
 #include "enhanced_orb/params.h"
 
+#include <algorithm>
 #include <functional>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 namespace enhanced_orb {
 namespace {
-
-// Appends a message when `value` lies outside [lo, hi]. NaN fails every comparison and is rejected.
-template <typename T>
-void checkRange(std::vector<std::string>& out, const char* name, T value, T lo, T hi) {
-  if (value >= lo && value <= hi) {
-    return;
-  }
-  std::ostringstream msg;
-  msg << name << " = " << value << " is out of range [" << lo << ", " << hi << "]";
-  out.push_back(msg.str());
-}
 
 void append(std::vector<std::string>& out, const std::vector<std::string>& more) {
   out.insert(out.end(), more.begin(), more.end());
@@ -62,6 +54,8 @@ Params Params::preset(Preset preset) {
       return paper();
     case Preset::kStretch:
       return stretch();
+    case Preset::kBaseline:
+      return baseline();
     case Preset::kDefault:
       break;
   }
@@ -74,53 +68,6 @@ Params Params::baseline(int fast_threshold) {
   p.orb.threshold_mode = ThresholdMode::kFixed;
   p.orb.fast_threshold = fast_threshold;
   return p;
-}
-
-std::vector<std::string> validate(const EnhanceParams& p) {
-  std::vector<std::string> out;
-  checkRange(out, "alpha", p.alpha, 0.0, 1.0);
-  checkRange(out, "tau", p.tau, 0.0, 1.0);
-  if (p.tone_curve == ToneCurve::kStretch && p.tau >= 0.5) {
-    std::ostringstream msg;
-    msg << "tau = " << p.tau << " must be below 0.5 with tone_curve stretch (it clips that fraction at each end)";
-    out.push_back(msg.str());
-  }
-  checkRange(out, "beta", p.beta, 0.0, 2.0);
-  checkRange(out, "sharpening", p.sharpening, -1.0, 5.0);
-  checkRange(out, "blur_ksize", p.blur_ksize, 1, 31);
-  if (p.blur_ksize % 2 == 0) {
-    out.push_back("blur_ksize = " + std::to_string(p.blur_ksize) + " must be odd");
-  }
-  checkRange(out, "blur_sigma", p.blur_sigma, 0.1, 10.0);
-  checkRange(out, "std_threshold", p.std_threshold, 0.0, 1.0);
-  return out;
-}
-
-std::vector<std::string> validate(const ThresholdParams& p) {
-  std::vector<std::string> out;
-  checkRange(out, "grid_size", p.grid_size, 1, 32);
-  checkRange(out, "threshold_scale", p.threshold_scale, 0.0, 2.0);
-  checkRange(out, "c_min", p.c_min, 1, 200);
-  return out;
-}
-
-std::vector<std::string> validate(const OrbParams& p) {
-  std::vector<std::string> out;
-  checkRange(out, "fast_threshold", p.fast_threshold, 1, 200);
-  checkRange(out, "max_features", p.max_features, 0, 100000);
-  checkRange(out, "n_levels", p.n_levels, 1, 16);
-  checkRange(out, "scale_factor", p.scale_factor, 1.01, 2.0);
-  checkRange(out, "candidate_ratio", p.candidate_ratio, 0.0, 100.0);
-  checkRange(out, "noise_floor", p.noise_floor, 0.0, 50.0);
-  checkRange(out, "threads", p.threads, 1, 64);
-  return out;
-}
-
-std::vector<std::string> validate(const Params& p) {
-  std::vector<std::string> out = validate(p.enhance);
-  append(out, validate(p.threshold));
-  append(out, validate(p.orb));
-  return out;
 }
 
 namespace {
@@ -152,12 +99,21 @@ bool parseBool(const std::string& text, bool& out) {
 
 namespace {
 
-// A parameter as text: read with parse, written with format. The one list of names the command
-// line, the nodelets' preset seeding and the evaluation tools share.
+// The parameter table: every parameter of Params once, with its ROS name, the part of Params it
+// belongs to, how it is read and written as text, its range and its meaning. setParam(),
+// paramText(), paramNames(), validate()'s range checks and paramTable() (the tools' usage text,
+// the tests that hold cfg/*.cfg to it) all read it. Defaults are Params' member initialisers.
+enum class Group { kSwitch, kEnhance, kThreshold, kOrb };
+
 struct Field {
   const char* name;
+  Group group;
   std::function<bool(Params&, const std::string&)> parse;
   std::function<std::string(const Params&)> format;
+  const char* type;                            // "bool", "int", "double", or the names an enum reads
+  double lo = 0.0, hi = 0.0;                   // the range (numbers only)
+  std::function<double(const Params&)> value;  // the value as a number (numbers only)
+  const char* meaning = "";
 };
 
 template <typename T>
@@ -168,47 +124,100 @@ std::string formatNumber(T value) {
   return out.str();
 }
 
-// A numeric field reached by `at` (which returns a reference into Params).
+// A numeric field reached by `at` (which returns a reference into Params), valid in [lo, hi].
 template <typename At>
-Field number(const char* name, At at) {
-  return {name, [at](Params& p, const std::string& v) { return parseWhole(v, at(p)); },
-          [at](const Params& p) { return formatNumber(at(const_cast<Params&>(p))); }};
+Field number(const char* name, Group group, At at, double lo, double hi, const char* meaning) {
+  using T = std::remove_reference_t<decltype(at(std::declval<Params&>()))>;
+  return {name,
+          group,
+          [at](Params& p, const std::string& v) { return parseWhole(v, at(p)); },
+          [at](const Params& p) { return formatNumber(at(const_cast<Params&>(p))); },
+          std::is_integral_v<T> ? "int" : "double",
+          lo,
+          hi,
+          [at](const Params& p) { return static_cast<double>(at(const_cast<Params&>(p))); },
+          meaning};
 }
 
 // A named-enum field.
 template <typename At, typename Parse>
-Field named(const char* name, At at, Parse parse) {
-  return {name, [at, parse](Params& p, const std::string& v) { return parse(v, at(p)); },
-          [at](const Params& p) { return std::string(toString(at(const_cast<Params&>(p)))); }};
+Field named(const char* name, Group group, At at, Parse parse, const char* type, const char* meaning) {
+  return {name,
+          group,
+          [at, parse](Params& p, const std::string& v) { return parse(v, at(p)); },
+          [at](const Params& p) { return std::string(toString(at(const_cast<Params&>(p)))); },
+          type,
+          0.0,
+          0.0,
+          nullptr,
+          meaning};
 }
 
 const std::vector<Field>& fields() {
   static const std::vector<Field> all = {
-      {"enhance", [](Params& p, const std::string& v) { return parseBool(v, p.enhance_enabled); },
-       [](const Params& p) { return std::string(p.enhance_enabled ? "true" : "false"); }},
+      {"enhance", Group::kSwitch, [](Params& p, const std::string& v) { return parseBool(v, p.enhance_enabled); },
+       [](const Params& p) { return std::string(p.enhance_enabled ? "true" : "false"); }, "bool", 0.0, 0.0, nullptr,
+       "false: the image is used as it is (already enhanced, or the original ORB)"},
       named(
-          "tone_curve", [](Params& p) -> ToneCurve& { return p.enhance.tone_curve; }, parseToneCurve),
-      number("alpha", [](Params& p) -> double& { return p.enhance.alpha; }),
-      number("tau", [](Params& p) -> double& { return p.enhance.tau; }),
-      number("beta", [](Params& p) -> double& { return p.enhance.beta; }),
-      number("sharpening", [](Params& p) -> double& { return p.enhance.sharpening; }),
-      number("blur_ksize", [](Params& p) -> int& { return p.enhance.blur_ksize; }),
-      number("blur_sigma", [](Params& p) -> double& { return p.enhance.blur_sigma; }),
-      number("std_threshold", [](Params& p) -> double& { return p.enhance.std_threshold; }),
+          "tone_curve", Group::kEnhance, [](Params& p) -> ToneCurve& { return p.enhance.tone_curve; }, parseToneCurve,
+          "equalize|gamma|stretch",
+          "the tone curve of eqs 10-17: edge-weighted equalisation, the paper's gamma, a linear stretch"),
+      number(
+          "alpha", Group::kEnhance, [](Params& p) -> double& { return p.enhance.alpha; }, 0.0, 1.0,
+          "eq 12: smoothness exponent of the weighted histogram"),
+      number(
+          "tau", Group::kEnhance, [](Params& p) -> double& { return p.enhance.tau; }, 0.0, 1.0,
+          "eq 15: lower truncation of gamma (equalize: least slope; stretch: fraction clipped at each end, < 0.5)"),
+      number(
+          "beta", Group::kEnhance, [](Params& p) -> double& { return p.enhance.beta; }, 0.0, 2.0,
+          "eq 20: weight of the brightness mask"),
+      number(
+          "sharpening", Group::kEnhance, [](Params& p) -> double& { return p.enhance.sharpening; }, -1.0, 5.0,
+          "eq 19: unsharp-mask degree; -1 keeps the filtered image"),
+      number(
+          "blur_ksize", Group::kEnhance, [](Params& p) -> int& { return p.enhance.blur_ksize; }, 1, 31,
+          "eq 8: Gaussian kernel size, odd"),
+      number(
+          "blur_sigma", Group::kEnhance, [](Params& p) -> double& { return p.enhance.blur_sigma; }, 0.1, 10.0,
+          "eq 8: Gaussian sigma"),
+      number(
+          "std_threshold", Group::kEnhance, [](Params& p) -> double& { return p.enhance.std_threshold; }, 0.0, 1.0,
+          "quality test: the tone curve runs when lambda exceeds it (gamma_mode auto)"),
       named(
-          "gamma_mode", [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode),
-      number("grid_size", [](Params& p) -> int& { return p.threshold.grid_size; }),
-      number("threshold_scale", [](Params& p) -> double& { return p.threshold.threshold_scale; }),
-      number("c_min", [](Params& p) -> int& { return p.threshold.c_min; }),
+          "gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode,
+          "auto|always|never", "when the tone curve runs: by the quality test, always, never"),
+      number(
+          "grid_size", Group::kThreshold, [](Params& p) -> int& { return p.threshold.grid_size; }, 1, 32,
+          "m: the image is cut into m x m cells, each with its own FAST threshold"),
+      number(
+          "threshold_scale", Group::kThreshold, [](Params& p) -> double& { return p.threshold.threshold_scale; }, 0.0,
+          2.0, "a in C = a |I_mid - t| (eq 33)"),
+      number(
+          "c_min", Group::kThreshold, [](Params& p) -> int& { return p.threshold.c_min; }, 1, 200,
+          "C_min (eq 34): the least FAST threshold of a cell"),
       named(
-          "threshold_mode", [](Params& p) -> ThresholdMode& { return p.orb.threshold_mode; }, parseThresholdMode),
-      number("fast_threshold", [](Params& p) -> int& { return p.orb.fast_threshold; }),
-      number("max_features", [](Params& p) -> int& { return p.orb.max_features; }),
-      number("candidate_ratio", [](Params& p) -> double& { return p.orb.candidate_ratio; }),
-      number("noise_floor", [](Params& p) -> double& { return p.orb.noise_floor; }),
-      number("n_levels", [](Params& p) -> int& { return p.orb.n_levels; }),
-      number("scale_factor", [](Params& p) -> double& { return p.orb.scale_factor; }),
-      number("threads", [](Params& p) -> int& { return p.orb.threads; }),
+          "threshold_mode", Group::kOrb, [](Params& p) -> ThresholdMode& { return p.orb.threshold_mode; },
+          parseThresholdMode, "adaptive|fixed", "per-cell truncated adaptive thresholds, or one fixed threshold"),
+      number(
+          "fast_threshold", Group::kOrb, [](Params& p) -> int& { return p.orb.fast_threshold; }, 1, 200,
+          "the fixed FAST threshold (threshold_mode fixed)"),
+      number(
+          "max_features", Group::kOrb, [](Params& p) -> int& { return p.orb.max_features; }, 0, 100000,
+          "the budget over all levels; 0 keeps every corner"),
+      number(
+          "candidate_ratio", Group::kOrb, [](Params& p) -> double& { return p.orb.candidate_ratio; }, 0.0, 100.0,
+          "a level spreads its budget over its candidate_ratio x budget strongest corners; 0: over all"),
+      number(
+          "noise_floor", Group::kOrb, [](Params& p) -> double& { return p.orb.noise_floor; }, 0.0, 50.0,
+          "> 0: a level spreads its budget over its corners scoring noise_floor x the frame's noise or more"),
+      number(
+          "n_levels", Group::kOrb, [](Params& p) -> int& { return p.orb.n_levels; }, 1, 16, "pyramid levels"),
+      number(
+          "scale_factor", Group::kOrb, [](Params& p) -> double& { return p.orb.scale_factor; }, 1.01, 2.0,
+          "pyramid scale between levels"),
+      number(
+          "threads", Group::kOrb, [](Params& p) -> int& { return p.orb.threads; }, 1, 64,
+          "threads of one extraction (the same results for any count)"),
   };
   return all;
 }
@@ -223,6 +232,102 @@ const Field* findField(const std::string& name) {
 }
 
 }  // namespace
+
+namespace {
+
+// The range checks of one group of the table, on `p`: one message per value outside its range
+// ("alpha = 1.5 is out of range [0, 1]"). NaN fails every comparison and is rejected.
+std::vector<std::string> checkRanges(const Params& p, Group group) {
+  std::vector<std::string> out;
+  for (const Field& f : fields()) {
+    if (f.group != group || !f.value) {
+      continue;
+    }
+    const double v = f.value(p);
+    if (v >= f.lo && v <= f.hi) {
+      continue;
+    }
+    std::ostringstream msg;
+    msg << f.name << " = " << v << " is out of range [" << f.lo << ", " << f.hi << "]";
+    out.push_back(msg.str());
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const EnhanceParams& e) {
+  Params p;
+  p.enhance = e;
+  std::vector<std::string> out = checkRanges(p, Group::kEnhance);
+  if (e.tone_curve == ToneCurve::kStretch && e.tau >= 0.5) {
+    std::ostringstream msg;
+    msg << "tau = " << e.tau << " must be below 0.5 with tone_curve stretch (it clips that fraction at each end)";
+    out.push_back(msg.str());
+  }
+  if (e.blur_ksize % 2 == 0) {
+    out.push_back("blur_ksize = " + std::to_string(e.blur_ksize) + " must be odd");
+  }
+  return out;
+}
+
+std::vector<std::string> validate(const ThresholdParams& t) {
+  Params p;
+  p.threshold = t;
+  return checkRanges(p, Group::kThreshold);
+}
+
+std::vector<std::string> validate(const OrbParams& o) {
+  Params p;
+  p.orb = o;
+  return checkRanges(p, Group::kOrb);
+}
+
+std::vector<std::string> validate(const Params& p) {
+  std::vector<std::string> out = validate(p.enhance);
+  append(out, validate(p.threshold));
+  append(out, validate(p.orb));
+  return out;
+}
+
+std::vector<ParamInfo> paramTable() {
+  std::vector<ParamInfo> table;
+  const Params defaults;
+  for (const Field& f : fields()) {
+    ParamInfo info;
+    info.name = f.name;
+    info.type = f.type;
+    info.has_range = static_cast<bool>(f.value);
+    info.lo = f.lo;
+    info.hi = f.hi;
+    if (f.value) {
+      std::ostringstream text;  // six significant digits: what a person reads (0.3, not 0.2999...)
+      text << f.value(defaults);
+      info.default_text = text.str();
+    } else {
+      info.default_text = f.format(defaults);
+    }
+    info.meaning = f.meaning;
+    table.push_back(info);
+  }
+  return table;
+}
+
+std::string paramUsage() {
+  std::ostringstream out;
+  for (const ParamInfo& info : paramTable()) {
+    std::string option = "--" + info.name;
+    std::replace(option.begin(), option.end(), '_', '-');
+    out << "  " << option << " ";
+    if (info.has_range) {
+      out << (info.type == "int" ? "N" : "X") << " in [" << info.lo << ", " << info.hi << "]";
+    } else {
+      out << info.type;
+    }
+    out << " (default " << info.default_text << ")\n      " << info.meaning << "\n";
+  }
+  return out.str();
+}
 
 std::string setParam(Params& p, const std::string& name, const std::string& value) {
   const Field* field = findField(name);
@@ -303,7 +408,8 @@ constexpr Named<ToneCurve> kToneCurves[] = {
 constexpr Named<Preset> kPresets[] = {{Preset::kDefault, "default"},
                                       {Preset::kPaper, "paper"},
                                       {Preset::kStretch, "stretch"},
-                                      {Preset::kMotion, "motion"}};
+                                      {Preset::kMotion, "motion"},
+                                      {Preset::kBaseline, "baseline"}};
 constexpr Named<GammaMode> kGammaModes[] = {
     {GammaMode::kAuto, "auto"}, {GammaMode::kAlways, "always"}, {GammaMode::kNever, "never"}};
 constexpr Named<ThresholdMode> kThresholdModes[] = {{ThresholdMode::kAdaptive, "adaptive"},

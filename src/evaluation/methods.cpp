@@ -26,9 +26,9 @@ std::vector<std::string> methodNames() {
 
 Method makeMethod(const std::string& name, int budget, const Params& params) {
   Preset preset = Preset::kDefault;
-  if (name == "baseline" || parsePreset(name, preset)) {
+  if (parsePreset(name, preset)) {
     // The default mode's parameters are the caller's; a named preset's its own.
-    Params p = name == "baseline" ? Params::baseline() : preset == Preset::kDefault ? params : Params::preset(preset);
+    Params p = preset == Preset::kDefault ? params : Params::preset(preset);
     p.orb.max_features = budget;
     auto extractor = std::make_shared<const OrbExtractor>(p);
     return {name, budget, [extractor](const cv::Mat& gray) {

@@ -78,12 +78,12 @@ private:
     }
     Params all;
     all.enhance = p;
-    all.enhance_enabled = config.enabled;
+    all.enhance_enabled = config.enhance;
     warnInactive(all, configValues(config));
     valid_ = config;
     std::lock_guard<std::mutex> lock(params_mutex_);
     params_ = p;
-    enabled_ = config.enabled;
+    enabled_ = config.enhance;
   }
 
   void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {

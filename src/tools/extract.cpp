@@ -33,12 +33,8 @@ poor_quality, inverted, enhance_ms and extract_ms.
 
 options:
   --output DIR           where to write (created if missing; required)
-  --preset NAME          default (the default mode, 1000 features), paper (Dai & Wu as
-                         published, every corner) or stretch (the default mode with a linear
-                         stretch and the strongest corners: scenes whose light changes locally);
-                         parameters given after it override it
-  --baseline             the original ORB: the paper preset without enhancement, fixed threshold
-  --no-enhance           skip the enhancement, keep the adaptive threshold
+  --preset NAME          the parameters to start from: default, motion, stretch, paper or
+                         baseline (README "Which mode to use"); the parameters given override it
   --save-enhanced        also write DIR/<stem>_enhanced.png
   --save-annotated       also write DIR/<stem>_annotated.png
   --time-opencv          also time cv::ORB (same budget, 8 levels, 1.2; every corner when the budget
@@ -46,12 +42,8 @@ options:
   --max-pixels N         refuse images larger than N pixels (default 33554432 = 32 Mpixel, as the
                          nodelets), read from the file header before decoding where the format allows
   -h, --help             this text
-parameters (README "Parameters" gives each one's meaning, default and range):
-  --max-features N  --candidate-ratio X  --noise-floor X  --n-levels N  --scale-factor X
-  --threads N (threads of one extraction, default 1 so that timings compare; results are the same)
-  --tone-curve equalize|gamma|stretch  --alpha X  --tau X  --beta X  --sharpening X
-  --blur-ksize N  --blur-sigma X  --gamma-mode auto|always|never  --std-threshold X
-  --grid-size N  --threshold-scale X  --c-min N  --threshold-mode adaptive|fixed  --fast-threshold N
+parameters (README "Parameters"), each --name VALUE; the defaults are the default mode's:
+%PARAMETERS%
 A value must be a whole number of the parameter's type and lie in its range; when an option is
 repeated, the last one wins.
 Outputs never collide: two images with the same stem (a/x.png, b/x.png) are refused before
@@ -62,10 +54,16 @@ exit codes: 0 every image done, 1 an image was skipped or an output could not be
 2 bad arguments (nothing written).
 )";
 
+// The usage text with the parameter table's options in place of %PARAMETERS%.
+std::string usage() {
+  std::string text = kUsage;
+  const std::string marker = "%PARAMETERS%";
+  text.replace(text.find(marker), marker.size(), enhanced_orb::paramUsage());
+  return text;
+}
+
 struct Options {
   Params params;
-  bool baseline = false;
-  bool no_enhance = false;
   bool save_enhanced = false;
   bool save_annotated = false;
   bool time_opencv = false;
@@ -85,9 +83,7 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
   }
   Params& p = opt.params;
   p = Params::preset(preset);
-  const std::map<std::string, bool*> flags = {{"--baseline", &opt.baseline},
-                                              {"--no-enhance", &opt.no_enhance},
-                                              {"--save-enhanced", &opt.save_enhanced},
+  const std::map<std::string, bool*> flags = {{"--save-enhanced", &opt.save_enhanced},
                                               {"--save-annotated", &opt.save_annotated},
                                               {"--time-opencv", &opt.time_opencv}};
   std::vector<std::pair<std::string, std::string>> settings;
@@ -113,9 +109,6 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
       } else if (arg != "--preset") {
         std::string name = arg.substr(2);
         std::replace(name.begin(), name.end(), '-', '_');
-        if (name == "enhance") {
-          return "unknown option " + arg;
-        }
         settings.emplace_back(name, value);
       }
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -123,9 +116,6 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
     } else {
       opt.images.push_back(arg);
     }
-  }
-  if (opt.baseline) {
-    p = Params::baseline();
   }
   for (const auto& [name, value] : settings) {
     const std::string error = enhanced_orb::setParam(p, name, value);
@@ -138,9 +128,6 @@ std::string parseArguments(int argc, char** argv, Options& opt) {
   }
   if (opt.images.empty()) {
     return "no IMAGE given";
-  }
-  if (opt.no_enhance) {
-    p.enhance_enabled = false;
   }
   for (const std::string& inactive : enhanced_orb::inactiveParameters(p)) {
     for (const auto& setting : settings) {
@@ -231,14 +218,14 @@ std::string planOutputs(const Options& opt, std::vector<fs::path>& stems) {
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {
-      std::cout << kUsage;
+      std::cout << usage();
       return 0;
     }
   }
   Options opt;
   const std::string error = parseArguments(argc, argv, opt);
   if (!error.empty()) {
-    std::cerr << "enhanced_orb_extract: " << error << "\n\n" << kUsage;
+    std::cerr << "enhanced_orb_extract: " << error << "\n\n" << usage();
     return 2;
   }
   std::vector<fs::path> stems;

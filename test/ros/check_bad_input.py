@@ -76,7 +76,7 @@ EXTREMES = [  # (node, values)
     ("/cam0/enhance", {"alpha": 0.0, "tau": 0.0, "beta": 2.0, "sharpening": 5.0, "gamma_mode": "always"}),
     ("/cam0/enhance", {"alpha": 1.0, "tau": 1.0, "beta": 0.0, "sharpening": 0.0}),
     ("/cam0/enhance", {"gamma_mode": "no_such_mode"}),
-    ("/cam0/enhance", {"std_threshold": 0.0, "enabled": False}),
+    ("/cam0/enhance", {"std_threshold": 0.0, "enhance": False}),
 ]
 
 

@@ -47,7 +47,7 @@ TEST(ConfigAgreement, EnhanceDefaultsAreTheDefaultMode) {
   EXPECT_DOUBLE_EQ(c.blur_sigma, e.blur_sigma);
   EXPECT_DOUBLE_EQ(c.std_threshold, e.std_threshold);
   EXPECT_EQ(c.gamma_mode, toString(e.gamma_mode));
-  EXPECT_TRUE(c.enabled);
+  EXPECT_EQ(c.enhance, Params().enhance_enabled);
 }
 
 TEST(ConfigAgreement, ExtractDefaultsAreTheDefaultMode) {

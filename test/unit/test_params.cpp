@@ -1,6 +1,10 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -169,7 +173,7 @@ TEST(Params, SetParamByNameParsesWholeValuesOnly) {
 }
 
 TEST(Params, NamesRoundTrip) {
-  for (Preset preset : {Preset::kDefault, Preset::kPaper, Preset::kStretch, Preset::kMotion}) {
+  for (Preset preset : {Preset::kDefault, Preset::kPaper, Preset::kStretch, Preset::kMotion, Preset::kBaseline}) {
     Preset parsed = Preset::kDefault;
     ASSERT_TRUE(parsePreset(toString(preset), parsed));
     EXPECT_EQ(parsed, preset);
@@ -194,7 +198,7 @@ TEST(Params, NamesRoundTrip) {
     return out;
   };
   const std::vector<std::string> presets = names(presetNames());
-  ASSERT_EQ(presets.size(), 4u) << presetNames();
+  ASSERT_EQ(presets.size(), 5u) << presetNames();
   for (const std::string& name : presets) {
     Preset parsed;
     EXPECT_TRUE(parsePreset(name, parsed)) << name;
@@ -337,4 +341,67 @@ TEST(Params, MotionPresetIsTheDefaultModeWithTheNoiseFloor) {
         "c_min", "threshold_mode", "max_features", "candidate_ratio", "n_levels", "scale_factor"}) {
     EXPECT_EQ(paramText(m, name), paramText(d, name)) << name;
   }
+}
+
+// Every parameter by its name, as text: the same value whichever way it was reached.
+std::map<std::string, std::string> asText(const Params& p) {
+  std::map<std::string, std::string> out;
+  for (const std::string& name : paramNames()) {
+    out[name] = paramText(p, name).value_or("?");
+  }
+  return out;
+}
+
+TEST(ParamTable, EveryParameterOnceWithTheDefaultModesValueAndItsRange) {
+  const std::vector<ParamInfo> table = paramTable();
+  std::vector<std::string> names;
+  for (const ParamInfo& row : table) {
+    names.push_back(row.name);
+    EXPECT_FALSE(row.meaning.empty()) << row.name;
+  }
+  EXPECT_EQ(names, paramNames());
+  for (const ParamInfo& row : table) {
+    // The default shown is the default mode's value.
+    Params p;
+    ASSERT_EQ(setParam(p, row.name, row.default_text), "") << row.name;
+    EXPECT_EQ(asText(p), asText(Params())) << row.name << " default " << row.default_text;
+    if (!row.has_range) {
+      continue;
+    }
+    // validate() accepts the range's ends and refuses what lies just outside it.
+    const double step = row.type == "int" ? 1.0 : 1e-6;
+    auto accepted = [&](double v) {
+      Params q;
+      std::ostringstream text;
+      text.precision(17);
+      text << (row.type == "int" ? std::round(v) : v);
+      EXPECT_EQ(setParam(q, row.name, text.str()), "") << row.name << " " << text.str();
+      return validate(q).empty();
+    };
+    EXPECT_TRUE(accepted(row.lo)) << row.name;
+    EXPECT_TRUE(accepted(row.hi)) << row.name;
+    EXPECT_FALSE(accepted(row.lo - step)) << row.name;
+    EXPECT_FALSE(accepted(row.hi + step)) << row.name;
+  }
+}
+
+TEST(ParamTable, UsageListsEveryParameterAsAnOption) {
+  const std::string usage = paramUsage();
+  for (std::string name : paramNames()) {
+    std::replace(name.begin(), name.end(), '_', '-');
+    EXPECT_NE(usage.find("--" + name + " "), std::string::npos) << name;
+  }
+  EXPECT_NE(usage.find("--alpha X in [0, 1] (default 0.5)"), std::string::npos) << usage;
+}
+
+TEST(Presets, BaselineIsAPresetLikeTheOthers) {
+  Preset parsed = Preset::kDefault;
+  ASSERT_TRUE(parsePreset("baseline", parsed));
+  EXPECT_EQ(parsed, Preset::kBaseline);
+  EXPECT_EQ(asText(Params::preset(Preset::kBaseline)), asText(Params::baseline()));
+  const Params b = Params::preset(Preset::kBaseline);
+  EXPECT_FALSE(b.enhance_enabled);
+  EXPECT_EQ(b.orb.threshold_mode, ThresholdMode::kFixed);
+  EXPECT_EQ(b.orb.fast_threshold, 20);
+  EXPECT_NE(presetNames().find("baseline"), std::string::npos);
 }
