@@ -13,7 +13,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PACKAGES=(
   # build
   build-essential cmake catkin libopencv-dev libgtest-dev libbenchmark-dev
-  libroscpp-dev libnodeletlib-dev libnodelet-dev libimage-transport-dev libcv-bridge-dev librosbag-dev
+  libroscpp-dev libnodeletlib-dev libnodelet-dev libimage-transport-dev libcv-bridge-dev librosbag-dev libmessage-filters-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure libdiagnostic-updater-dev
   ros-message-generation ros-message-runtime ros-std-msgs ros-sensor-msgs ros-diagnostic-msgs ros-cmake-modules
   # run and test

@@ -1,13 +1,13 @@
 // enhanced_orb/ExtractNodelet: image -> keypoints (KeypointArray) and image_annotated (bgr8),
 // ORB with the truncated adaptive threshold (section III-B) or the original fixed threshold.
-#include <deque>
 #include <iomanip>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <sstream>
 
 #include <dynamic_reconfigure/server.h>
+#include <message_filters/cache.h>
+#include <message_filters/subscriber.h>
 #include <sensor_msgs/image_encodings.h>
 #include <boost/make_shared.hpp>
 #include <pluginlib/class_list_macros.hpp>
@@ -30,7 +30,10 @@ private:
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
     annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
     address_pub_ = advertiseAddress("input_address");
-    status_sub_ = nh.subscribe("enhance_status", 10, &ExtractNodelet::onStatus, this);
+    // The enhancement's statuses, kept by stamp (message_filters::Cache) for the caption of the
+    // image with the same stamp; an image without one is drawn without it.
+    status_sub_.subscribe(nh, "enhance_status", 10);
+    statuses_.connectInput(status_sub_);
     server_ = std::make_unique<dynamic_reconfigure::Server<ExtractConfig>>(config_mutex_, getPrivateNodeHandle());
     server_->setCallback([this](ExtractConfig& config, uint32_t) {
       try {
@@ -119,7 +122,7 @@ private:
         caption << " (" << draw.max_drawn << " drawn)";
       }
       caption << std::fixed << std::setprecision(2);
-      const std::optional<EnhanceStatus> status = statusOf(msg->header.stamp);
+      const EnhanceStatus::ConstPtr status = statusOf(msg->header.stamp);
       if (status) {
         caption << " | lambda " << status->lambda << " | tone curve " << (status->poor_quality ? "on" : "off")
                 << (status->inverted ? " (inverted)" : "") << " | " << std::setprecision(1) << status->enhance_ms
@@ -135,28 +138,14 @@ private:
   }
 
   // The enhancement's status of the image with this stamp, when EnhanceNodelet sent one.
-  std::optional<EnhanceStatus> statusOf(const ros::Time& stamp) {
-    std::lock_guard<std::mutex> lock(status_mutex_);
-    for (auto it = statuses_.rbegin(); it != statuses_.rend(); ++it) {
-      if (it->header.stamp == stamp) {
-        return *it;
-      }
-    }
-    return std::nullopt;
-  }
-
-  void onStatus(const EnhanceStatus::ConstPtr& status) {
-    std::lock_guard<std::mutex> lock(status_mutex_);
-    statuses_.push_back(*status);
-    if (statuses_.size() > 32) {
-      statuses_.pop_front();
-    }
+  EnhanceStatus::ConstPtr statusOf(const ros::Time& stamp) const {
+    const std::vector<EnhanceStatus::ConstPtr> same = statuses_.getInterval(stamp, stamp);
+    return same.empty() ? nullptr : same.back();
   }
 
   ros::Publisher keypoints_pub_;
-  ros::Subscriber status_sub_;
-  std::mutex status_mutex_;
-  std::deque<EnhanceStatus> statuses_;
+  message_filters::Subscriber<EnhanceStatus> status_sub_;
+  message_filters::Cache<EnhanceStatus> statuses_{32};
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
   boost::recursive_mutex config_mutex_;
