@@ -30,24 +30,26 @@ bool isPoorQuality(double lambda, const EnhanceParams& params);
 
 using Histogram = std::array<std::uint32_t, 256>;
 using WeightedHistogram = std::array<double, 256>;
-using GammaLut = std::array<float, 256>;
+// A tone curve as a table: the output tone of each input tone 0..255 (the gamma, equalising and
+// stretching curves alike).
+using ToneLut = std::array<float, 256>;
 
 // Eqs 10-13: the cumulative weighted distribution C_w of a histogram (counts or weights), with
 // the smoothness exponent alpha. All zero for an empty histogram.
 std::array<double, 256> weightedCdf(const WeightedHistogram& histogram, double alpha);
 
 // Eqs 10-16: the truncated adaptive gamma table LUT(i) = 255 (i/255)^gamma_i of a histogram.
-GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau);
+ToneLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau);
 
 // The default mode's tone curve: LUT(i) = 255 (tau i/255 + (1 - tau) C_w(i)), an equalisation by
 // the weighted CDF whose slope never falls below tau. The identity for an empty histogram.
-GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau);
+ToneLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau);
 
 // tone_curve stretch: LUT(i) = 255 (i - lo) / (hi - lo), clamped to [0, 255], where lo is the
 // lowest level with more than tau n of the n pixels at or below it and hi the highest with more than
 // tau n at or above it: a fraction tau of the pixels is clipped at each end and the tones keep their
 // order and their ratios of contrast. The identity when hi <= lo (an empty or one-tone histogram).
-GammaLut stretchingLut(const Histogram& histogram, double tau);
+ToneLut stretchingLut(const Histogram& histogram, double tau);
 
 // The default mode's histogram of `f` (the filtered image, CV_8UC1): the pixels at even x of even
 // rows each add w = sqrt(|f(x+1, y) - f(x-1, y)| + |f(x, y+1) - f(x, y-1)|) (neighbours clamped at

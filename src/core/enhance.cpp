@@ -112,12 +112,12 @@ std::array<double, 256> weightedCdf(const WeightedHistogram& histogram, double a
   return cdf;
 }
 
-GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau) {
+ToneLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau) {
   WeightedHistogram counts{};
   std::copy(histogram.begin(), histogram.end(), counts.begin());
   const std::array<double, 256> cw = weightedCdf(counts, alpha);
   const bool empty = cw[255] == 0.0;
-  GammaLut lut{};
+  ToneLut lut{};
   for (int i = 0; i < 256; ++i) {
     const double gamma = empty ? 1.0 : std::max(tau, 1.0 - cw[i]);    // eqs 14-15: truncated gamma_i
     lut[i] = static_cast<float>(255.0 * std::pow(i / 255.0, gamma));  // eq 16
@@ -125,17 +125,17 @@ GammaLut truncatedGammaLut(const Histogram& histogram, double alpha, double tau)
   return lut;
 }
 
-GammaLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau) {
+ToneLut equalizingLut(const WeightedHistogram& histogram, double alpha, double tau) {
   const std::array<double, 256> cw = weightedCdf(histogram, alpha);
   const bool empty = cw[255] == 0.0;
-  GammaLut lut{};
+  ToneLut lut{};
   for (int i = 0; i < 256; ++i) {
     lut[i] = static_cast<float>(empty ? i : 255.0 * (tau * i / 255.0 + (1.0 - tau) * cw[i]));
   }
   return lut;
 }
 
-GammaLut stretchingLut(const Histogram& histogram, double tau) {
+ToneLut stretchingLut(const Histogram& histogram, double tau) {
   double n = 0.0;
   for (std::uint32_t count : histogram) {
     n += count;
@@ -152,7 +152,7 @@ GammaLut stretchingLut(const Histogram& histogram, double tau) {
   while (hi > 0 && above <= clipped) {
     above += histogram[--hi];
   }
-  GammaLut lut{};
+  ToneLut lut{};
   for (int i = 0; i < 256; ++i) {
     lut[i] = hi > lo ? static_cast<float>(std::clamp(255.0 * (i - lo) / (hi - lo), 0.0, 255.0)) : static_cast<float>(i);
   }
@@ -269,7 +269,7 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   // Eqs 17-20 with the default mode's curve: E = I + sharpening (I - f) + beta (LUT(f) - f).
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
-  GammaLut curve{};
+  ToneLut curve{};
   for (int i = 0; i < 256; ++i) {
     curve[i] = static_cast<float>(i);
   }
@@ -402,7 +402,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceW
     // The paper's curve reads the table at round(f).
     cv::Mat& f_rounded = scratch.f_rounded;
     f.convertTo(f_rounded, CV_8U);
-    GammaLut lut = truncatedGammaLut(histogramOf(f_rounded), params.alpha, params.tau);
+    ToneLut lut = truncatedGammaLut(histogramOf(f_rounded), params.alpha, params.tau);
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
     cv::scaleAdd(curve_f, b, e, e);

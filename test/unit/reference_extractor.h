@@ -53,9 +53,9 @@ std::vector<double> weightedCumulative(const Counts& counts, double alpha) {
 
 // The curve LUT(i) = value(i, C_w(i)) of a histogram; the identity for an empty one.
 template <typename Counts, typename Value>
-GammaLut curveOf(const Counts& counts, double alpha, Value value) {
+ToneLut curveOf(const Counts& counts, double alpha, Value value) {
   const std::vector<double> c = weightedCumulative(counts, alpha);
-  GammaLut curve{};
+  ToneLut curve{};
   for (int i = 0; i < 256; ++i) {
     curve[i] = static_cast<float>(c.back() == 0.0 ? i : value(i, c[i]));
   }
@@ -64,20 +64,20 @@ GammaLut curveOf(const Counts& counts, double alpha, Value value) {
 
 // The default mode's curve: LUT(i) = 255 (tau i / 255 + (1 - tau) C_w(i)).
 template <typename Counts>
-GammaLut equalizingCurve(const Counts& counts, double alpha, double tau) {
+ToneLut equalizingCurve(const Counts& counts, double alpha, double tau) {
   return curveOf(counts, alpha, [tau](int i, double c) { return 255.0 * (tau * i / 255.0 + (1.0 - tau) * c); });
 }
 
 // The paper's curve, eqs 14-16: gamma_i = max(tau, 1 - C_wi), LUT(i) = 255 (i / 255)^gamma_i.
 template <typename Counts>
-GammaLut gammaCurve(const Counts& counts, double alpha, double tau) {
+ToneLut gammaCurve(const Counts& counts, double alpha, double tau) {
   return curveOf(counts, alpha, [tau](int i, double c) { return 255.0 * std::pow(i / 255.0, std::max(tau, 1.0 - c)); });
 }
 
 // tone_curve stretch as ALGORITHM.md defines it: lo is the lowest level with more than tau n of
 // the n pixels of f at or below it, hi the highest with more than tau n at or above it;
 // LUT(i) = 255 (i - lo) / (hi - lo) clipped to [0, 255], the identity when hi <= lo.
-inline GammaLut stretchCurve(const cv::Mat& f, double tau) {
+inline ToneLut stretchCurve(const cv::Mat& f, double tau) {
   std::vector<std::uint8_t> sorted(f.begin<std::uint8_t>(), f.end<std::uint8_t>());
   std::sort(sorted.begin(), sorted.end());
   const double n = static_cast<double>(sorted.size());
@@ -92,7 +92,7 @@ inline GammaLut stretchCurve(const cv::Mat& f, double tau) {
   while (hi > 0 && !(n - atOrBelow(hi - 1) > tau * n)) {
     --hi;
   }
-  GammaLut curve{};
+  ToneLut curve{};
   for (int i = 0; i < 256; ++i) {
     curve[i] = hi > lo ? static_cast<float>(std::min(255.0, std::max(0.0, 255.0 * (i - lo) / (hi - lo))))
                        : static_cast<float>(i);
@@ -106,7 +106,7 @@ inline EnhanceResult enhanceEqualize(const cv::Mat& gray, const EnhanceParams& p
   cv::Mat f;
   cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
                    cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
-  GammaLut curve{};
+  ToneLut curve{};
   for (int i = 0; i < 256; ++i) {
     curve[i] = static_cast<float>(i);
   }
@@ -202,7 +202,7 @@ inline EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params) {
         ++histogram[row[x]];
       }
     }
-    GammaLut lut = gammaCurve(histogram, params.alpha, params.tau);
+    ToneLut lut = gammaCurve(histogram, params.alpha, params.tau);
     cv::Mat& curve_f = scratch.curve_f;
     cv::LUT(f_rounded, cv::Mat(1, 256, CV_32F, lut.data()), curve_f);
     cv::scaleAdd(curve_f, b, e, e);

@@ -23,7 +23,7 @@ cv::Mat referenceEnhance(const cv::Mat& gray, const EnhanceParams& p, bool poor)
     for (auto it = f_rounded.begin<uchar>(); it != f_rounded.end<uchar>(); ++it) {
       ++hist[*it];
     }
-    const GammaLut lut = truncatedGammaLut(hist, p.alpha, p.tau);
+    const ToneLut lut = truncatedGammaLut(hist, p.alpha, p.tau);
     cv::Mat lut_mat(1, 256, CV_32F, const_cast<float*>(lut.data()));
     cv::Mat gamma_f;
     cv::LUT(f_rounded, lut_mat, gamma_f);
@@ -99,14 +99,14 @@ TEST(Quality, ModesAndThePapersLiteralTest) {
   EXPECT_FALSE(isPoorQuality(0.5, p));
 }
 
-TEST(GammaLut, ThreeLevelHistogramByHand) {
+TEST(ToneLut, ThreeLevelHistogramByHand) {
   // n = 14: 1 at level 10, 4 at 20, 9 at 30. P_max = 9/14, P_min = 0. With alpha = 0.5 (eq 12)
   // P_w = 3/14, 6/14, 9/14; their sum 18/14, so C_w = 1/6 on [10, 20), 1/2 on [20, 30), 1 from 30.
   Histogram h{};
   h[10] = 1;
   h[20] = 4;
   h[30] = 9;
-  const GammaLut lut = truncatedGammaLut(h, 0.5, 0.3);
+  const ToneLut lut = truncatedGammaLut(h, 0.5, 0.3);
   EXPECT_NEAR(lut[5], 5.0, 1e-4);  // C_w = 0 below level 10: gamma 1, the identity
   EXPECT_NEAR(lut[15], 255.0 * std::pow(15.0 / 255.0, 5.0 / 6.0), 1e-3);
   EXPECT_NEAR(lut[25], 255.0 * std::pow(25.0 / 255.0, 0.5), 1e-3);
@@ -114,12 +114,12 @@ TEST(GammaLut, ThreeLevelHistogramByHand) {
   EXPECT_NEAR(lut[255], 255.0, 1e-3);
 }
 
-TEST(GammaLut, FlatHistogramAndTruncationAtTau) {
+TEST(ToneLut, FlatHistogramAndTruncationAtTau) {
   // P_max = P_min: every P_w = P_max (eq 12), so C_wi = (i + 1) / 256.
   Histogram h;
   h.fill(10);
   for (double tau : {0.3, 0.7}) {
-    const GammaLut lut = truncatedGammaLut(h, 0.2, tau);
+    const ToneLut lut = truncatedGammaLut(h, 0.2, tau);
     for (int i : {1, 50, 100, 200, 254}) {
       const double gamma = std::max(tau, 1.0 - (i + 1) / 256.0);
       EXPECT_NEAR(lut[i], 255.0 * std::pow(i / 255.0, gamma), 1e-3) << "level " << i << ", tau " << tau;
@@ -127,7 +127,7 @@ TEST(GammaLut, FlatHistogramAndTruncationAtTau) {
   }
 }
 
-TEST(GammaLut, TwoLevelHistogram) {
+TEST(ToneLut, TwoLevelHistogram) {
   // Half the pixels at 0, half at 255: C_w = 1/2 below 255, so gamma_i = max(tau, 1/2).
   Histogram h{};
   h[0] = 50;
@@ -217,7 +217,7 @@ TEST(ToneCurve, EqualizingLutIsMonotoneWithSlopeAtLeastTau) {
     h[i] = 1.0 + (i % 7);
   }
   for (double tau : {0.0, 0.3, 1.0}) {
-    const GammaLut lut = equalizingLut(h, 0.5, tau);
+    const ToneLut lut = equalizingLut(h, 0.5, tau);
     EXPECT_NEAR(lut[255], 255.0f, 1e-3);
     for (int i = 0; i < 255; ++i) {
       EXPECT_GE(lut[i + 1] - lut[i], tau - 1e-4) << "tau " << tau << " level " << i;
@@ -227,10 +227,10 @@ TEST(ToneCurve, EqualizingLutIsMonotoneWithSlopeAtLeastTau) {
     }
   }
   // The occupied levels are stretched: levels 20..60 span most of the range at tau 0.
-  const GammaLut stretched = equalizingLut(h, 0.5, 0.0);
+  const ToneLut stretched = equalizingLut(h, 0.5, 0.0);
   EXPECT_LT(stretched[19], 5.0f);
   EXPECT_GT(stretched[59], 250.0f);
-  const GammaLut empty = equalizingLut(WeightedHistogram{}, 0.5, 0.3);
+  const ToneLut empty = equalizingLut(WeightedHistogram{}, 0.5, 0.3);
   EXPECT_FLOAT_EQ(empty[77], 77.0f);
 }
 
@@ -240,22 +240,22 @@ TEST(ToneCurve, StretchingLutMapsTheQuantilesToTheEnds) {
   h[40] = 40;
   h[60] = 40;
   h[90] = 10;
-  const GammaLut all = stretchingLut(h, 0.0);  // tau 0: the darkest and brightest level
+  const ToneLut all = stretchingLut(h, 0.0);  // tau 0: the darkest and brightest level
   EXPECT_FLOAT_EQ(all[10], 0.0f);
   EXPECT_FLOAT_EQ(all[90], 255.0f);
   EXPECT_FLOAT_EQ(all[50], 127.5f);
-  const GammaLut clipped = stretchingLut(h, 0.1);  // exactly 10 % at or below 10: clipped
+  const ToneLut clipped = stretchingLut(h, 0.1);  // exactly 10 % at or below 10: clipped
   EXPECT_FLOAT_EQ(clipped[40], 0.0f);
   EXPECT_FLOAT_EQ(clipped[60], 255.0f);
   EXPECT_FLOAT_EQ(clipped[10], 0.0f);
   EXPECT_FLOAT_EQ(clipped[50], 127.5f);
-  const GammaLut under = stretchingLut(h, 0.09);  // less than the end bins hold: kept
+  const ToneLut under = stretchingLut(h, 0.09);  // less than the end bins hold: kept
   EXPECT_FLOAT_EQ(under[10], 0.0f);
   EXPECT_FLOAT_EQ(under[90], 255.0f);
   // One level, or none: nothing to stretch, the identity.
   Histogram one{};
   one[77] = 5;
-  for (const GammaLut& lut : {stretchingLut(one, 0.2), stretchingLut(Histogram{}, 0.2)}) {
+  for (const ToneLut& lut : {stretchingLut(one, 0.2), stretchingLut(Histogram{}, 0.2)}) {
     for (int i = 0; i < 256; ++i) {
       EXPECT_FLOAT_EQ(lut[i], static_cast<float>(i));
     }
