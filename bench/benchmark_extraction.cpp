@@ -151,12 +151,13 @@ void BM_Enhance(benchmark::State& state) {
     p.gamma_mode = eo::GammaMode::kAlways;
   }
   const int threads = static_cast<int>(state.range(1));
+  p.threads = threads;
   ThreadScope scope(threads);
   FrameCycle cycle;
   cv::Mat out;
   eo::EnhanceWorkspace workspace;
   for (auto _ : state) {
-    out = eo::enhance(cycle.next(), p, workspace, out, threads).image;
+    out = eo::enhance(cycle.next(), p, workspace, out).image;
     benchmark::DoNotOptimize(out.data);
   }
   static const char* labels[] = {"paper, gamma auto (EuRoC: not poor)", "paper, gamma always",
@@ -290,6 +291,7 @@ void BM_Frame(benchmark::State& state) {
     eo::Params p = method == kPaper ? eo::Params::paper() : method == kDefault ? eo::Params() : eo::Params::baseline();
     p.orb.max_features = budget;
     p.orb.threads = threads;
+    p.enhance.threads = threads;
     const eo::OrbExtractor extractor(p);
     eo::Extraction out;
     for (int warm = 0; warm < 3; ++warm) {

@@ -79,11 +79,11 @@ struct EnhanceWorkspace {
 // empty result. Throws std::invalid_argument when `gray` is not CV_8UC1 or `params` is invalid.
 // `output`, when it has the input's size and type CV_8UC1, receives the result in place (a view of
 // a message buffer, say); otherwise a new image is allocated. It may be `gray` itself. With
-// threads > 1 horizontal bands are worked on side by side (cv::parallel_for_); the result is the
-// same for any count. Frame after frame, pass a workspace; without one, each call makes its own.
+// params.threads > 1 horizontal bands are worked on side by side (cv::parallel_for_); the result is
+// the same for any count. Frame after frame, pass a workspace; without one, each call makes its own.
 EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& workspace,
-                      cv::Mat output = cv::Mat(), int threads = 1);
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output = cv::Mat(), int threads = 1);
+                      cv::Mat output = cv::Mat());
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output = cv::Mat());
 
 }  // namespace enhanced_orb
 

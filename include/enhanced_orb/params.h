@@ -58,6 +58,9 @@ struct EnhanceParams {
   double blur_sigma = 1.0;      // eq 8: Gaussian sigma, [0.1, 10]
   double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode auto), [0, 1]
   GammaMode gamma_mode = GammaMode::kAlways;
+  // Threads one enhancement uses (horizontal bands, through cv::parallel_for_); the result is the
+  // same for any count. [1, 64]
+  int threads = 1;
 };
 
 // Section III-B: truncated adaptive threshold.
@@ -82,8 +85,9 @@ struct OrbParams {
   double noise_floor = 0.0;
   int n_levels = 8;           // pyramid levels, [1, 16]
   double scale_factor = 1.2;  // pyramid scale between levels, [1.01, 2]
-  // Threads one extraction uses, through cv::parallel_for_ (OpenCV's pool, cv::setNumThreads,
-  // bounds it); the results are the same for any count. [1, 64]
+  // Threads one extraction's pyramid levels use, through cv::parallel_for_ (OpenCV's pool,
+  // cv::setNumThreads, bounds it); the results are the same for any count. The enhancement's
+  // threads are EnhanceParams::threads. [1, 64]
   int threads = 1;
 };
 

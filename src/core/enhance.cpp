@@ -332,13 +332,13 @@ WeightedHistogram edgeWeightedHistogram(const cv::Mat& f) {
   return toWeightedHistogram(counts);
 }
 
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads) {
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output) {
   EnhanceWorkspace workspace;
-  return enhance(gray, params, workspace, output, threads);
+  return enhance(gray, params, workspace, output);
 }
 
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& scratch, cv::Mat output,
-                      int threads) {
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& scratch, cv::Mat output) {
+  const int threads = params.threads;
   if (!gray.empty() && gray.type() != CV_8UC1) {
     throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
   }

@@ -123,7 +123,7 @@ void enhanceInto(const cv::Mat& gray, const Params& params, EnhanceWorkspace& ws
     return;
   }
   ownOrRelease(out.image);
-  const EnhanceResult enhanced = enhance(gray, params.enhance, ws, out.image, params.orb.threads);
+  const EnhanceResult enhanced = enhance(gray, params.enhance, ws, out.image);
   out.image = enhanced.image;
   out.lambda = enhanced.lambda;
   out.poor_quality = enhanced.poor_quality;

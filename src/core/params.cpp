@@ -187,6 +187,9 @@ const std::vector<Field>& fields() {
           "gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode,
           "auto|always|never", "when the tone curve runs: by the quality test, always, never"),
       number(
+          "enhance_threads", Group::kEnhance, [](Params& p) -> int& { return p.enhance.threads; }, 1, 64,
+          "threads of one enhancement (the same result for any count)"),
+      number(
           "grid_size", Group::kThreshold, [](Params& p) -> int& { return p.threshold.grid_size; }, 1, 32,
           "m: the image is cut into m x m cells, each with its own FAST threshold"),
       number(
@@ -217,7 +220,7 @@ const std::vector<Field>& fields() {
           "pyramid scale between levels"),
       number(
           "threads", Group::kOrb, [](Params& p) -> int& { return p.orb.threads; }, 1, 64,
-          "threads of one extraction (the same results for any count)"),
+          "threads of one extraction's pyramid levels (the same results for any count)"),
   };
   return all;
 }

@@ -47,6 +47,7 @@ private:
     p.blur_sigma = config.blur_sigma;
     p.std_threshold = config.std_threshold;
     parseGammaMode(config.gamma_mode, p.gamma_mode);
+    p.threads = config.enhance_threads;
     return p;
   }
 

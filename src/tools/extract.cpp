@@ -236,8 +236,8 @@ int main(int argc, char** argv) {
   }
   try {
     fs::create_directories(opt.output);
-    // OpenCV's pool as large as the extraction asks, so that --threads 1 is one thread throughout.
-    cv::setNumThreads(opt.params.orb.threads);
+    // OpenCV's pool as large as the extraction asks, so that one thread is one thread throughout.
+    cv::setNumThreads(std::max(opt.params.orb.threads, opt.params.enhance.threads));
     const enhanced_orb::OrbExtractor extractor(opt.params);
     Extraction r;  // buffers reused from image to image
     const cv::Ptr<cv::ORB> opencv =
@@ -279,7 +279,7 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         opencv->detectAndCompute(gray, cv::noArray(), kps, descriptors);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        cv::setNumThreads(opt.params.orb.threads);
+        cv::setNumThreads(std::max(opt.params.orb.threads, opt.params.enhance.threads));
         sum_opencv += ms;
         std::cout << ", cv::ORB " << ms << " ms (" << kps.size() << " keypoints)";
       }

@@ -47,6 +47,7 @@ TEST(ConfigAgreement, EnhanceDefaultsAreTheDefaultMode) {
   EXPECT_DOUBLE_EQ(c.blur_sigma, e.blur_sigma);
   EXPECT_DOUBLE_EQ(c.std_threshold, e.std_threshold);
   EXPECT_EQ(c.gamma_mode, toString(e.gamma_mode));
+  EXPECT_EQ(c.enhance_threads, e.threads);
   EXPECT_EQ(c.enhance, Params().enhance_enabled);
 }
 
@@ -74,6 +75,7 @@ TEST(ConfigAgreement, RangesAreTheLibrarys) {
   expectSameRange("sharpening", lo.sharpening, hi.sharpening);
   expectSameRange("blur_sigma", lo.blur_sigma, hi.blur_sigma);
   expectSameRange("std_threshold", lo.std_threshold, hi.std_threshold);
+  expectSameRange("enhance_threads", lo.enhance_threads, hi.enhance_threads);
   EXPECT_TRUE(accepted("blur_ksize", std::to_string(lo.blur_ksize)));
   EXPECT_TRUE(accepted("blur_ksize", std::to_string(hi.blur_ksize)));
   const ExtractConfig xlo = ExtractConfig::__getMin__(), xhi = ExtractConfig::__getMax__();

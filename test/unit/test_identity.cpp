@@ -448,7 +448,9 @@ TEST(Enhance, IdenticalToTheReferenceInEveryModeAndSetting) {
     for (size_t i = 0; i < images.size(); ++i) {
       const cv::Mat expected = reference::enhance(images[i], params).image;
       for (int threads : {1, 2, 3}) {
-        expectSameMat(enhance(images[i], params, cv::Mat(), threads).image, expected,
+        EnhanceParams threaded = params;
+        threaded.threads = threads;
+        expectSameMat(enhance(images[i], threaded).image, expected,
                       name + ", image " + std::to_string(i) + ", " + std::to_string(threads) + " threads");
       }
     }
@@ -494,6 +496,7 @@ TEST(Extractor, IdenticalToTheReferenceOnEveryEurocFrameInEveryModeAndBudget) {
       params.orb.max_features = budget;
       Params two_threads = params;
       two_threads.orb.threads = 2;
+      two_threads.enhance.threads = 2;
       const OrbExtractor extractor(params);
       const OrbExtractor parallel(two_threads);
       Extraction reused;  // the buffer-reusing call, frame after frame
@@ -531,6 +534,7 @@ TEST(Extractor, IdenticalToTheReferenceAtEveryInstructionSet) {
         setSimdLevel(simd);
         for (int threads : {1, 2}) {
           params.orb.threads = threads;
+          params.enhance.threads = threads;
           const OrbExtractor extractor(params);
           for (size_t i = 0; i < frames.size(); ++i) {
             expectSameExtraction(extractor.extract(frames[i]), expected[i],
