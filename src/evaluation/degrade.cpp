@@ -54,7 +54,6 @@ cv::Mat gradientField(cv::Size size, double floor) {
 
 cv::Mat Degradation::apply(const cv::Mat& gray, std::uint64_t seed) const {
   SensorModel sensor;
-  cv::Mat out;
   if (name == "none") {
     return gray;
   } else if (name == "lowlight") {
@@ -70,24 +69,39 @@ cv::Mat Degradation::apply(const cv::Mat& gray, std::uint64_t seed) const {
   } else if (name == "gradient") {
     return lowLight(gray, gradientField(gray.size()), 1.0, sensor, seed);
   } else if (name == "dark" || name == "bright") {
-    gray.convertTo(out, CV_8U, name == "dark" ? 0.4 : 1.6);  // I' = saturate(I (1 + s)), s = -/+ 0.6
+    return changeBrightness(gray, name == "dark" ? -0.6 : 0.6);
   } else if (name.rfind("gamma_", 0) == 0) {
-    const double g = std::stod(name.substr(6));
-    cv::Mat lut(1, 256, CV_8U);
-    for (int i = 0; i < 256; ++i) {
-      lut.at<uchar>(i) = cv::saturate_cast<uchar>(255.0 * std::pow(i / 255.0, g));
-    }
-    cv::LUT(gray, lut, out);
+    return applyGamma(gray, std::stod(name.substr(6)));
   } else if (name.rfind("noise_", 0) == 0) {
-    cv::Mat noise(gray.size(), CV_32F);
-    cv::RNG rng(seed);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, std::stod(name.substr(6)));
-    cv::Mat g;
-    gray.convertTo(g, CV_32F);
-    cv::Mat(g + noise).convertTo(out, CV_8U);
-  } else {
-    throw std::invalid_argument("unknown degradation '" + name + "'");
+    return addGaussianNoise(gray, std::stod(name.substr(6)), seed);
   }
+  throw std::invalid_argument("unknown degradation '" + name + "'");
+}
+
+cv::Mat changeBrightness(const cv::Mat& gray, double s) {
+  cv::Mat out;
+  gray.convertTo(out, CV_8U, 1.0 + s);
+  return out;
+}
+
+cv::Mat applyGamma(const cv::Mat& gray, double g) {
+  cv::Mat lut(1, 256, CV_8U);
+  for (int i = 0; i < 256; ++i) {
+    lut.at<uchar>(i) = cv::saturate_cast<uchar>(255.0 * std::pow(i / 255.0, g));
+  }
+  cv::Mat out;
+  cv::LUT(gray, lut, out);
+  return out;
+}
+
+cv::Mat addGaussianNoise(const cv::Mat& gray, double sigma, std::uint64_t seed) {
+  cv::Mat noise(gray.size(), CV_32F);
+  cv::RNG rng(seed);
+  rng.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
+  cv::Mat g;
+  gray.convertTo(g, CV_32F);
+  cv::Mat out;
+  cv::Mat(g + noise).convertTo(out, CV_8U);
   return out;
 }
 

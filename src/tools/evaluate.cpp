@@ -23,7 +23,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "enhanced_orb/evaluation/dataset.h"
+#include "enhanced_orb/evaluation/degrade.h"
 #include "enhanced_orb/evaluation/files.h"
+#include "enhanced_orb/evaluation/methods.h"
 #include "enhanced_orb/evaluation/metrics.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
@@ -66,82 +68,39 @@ struct Frame {
   std::string source;      // file, or bag message
 };
 
-struct Features {
-  std::vector<cv::KeyPoint> keypoints;
-  cv::Mat descriptors;
-  double ms = 0.0;
-};
-
-struct Method {
-  std::string name;
-  int budget;  // 0 = every corner
-  std::function<Features(const cv::Mat&)> run;
-};
-
 std::string budgetName(int budget) {
   return budget ? std::to_string(budget) : "unlimited";
 }
 
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::vector<Method> methods(const std::vector<int>& budgets) {
-  std::vector<Method> out;
+// The paper's three methods (ALGORITHM.md section 4) at each budget: its original ORB, its improved
+// ORB (the paper preset, named "improved" in the output as in the paper) and cv::ORB.
+std::vector<ev::Method> methods(const std::vector<int>& budgets) {
+  std::vector<ev::Method> out;
   for (int budget : budgets) {
-    for (const std::string name : {"baseline", "improved"}) {
-      Params p = name == "baseline" ? Params::baseline() : Params::paper();
-      p.orb.max_features = budget;
-      auto extractor = std::make_shared<OrbExtractor>(p);
-      out.push_back({name, budget, [extractor](const cv::Mat& gray) {
-                       const auto start = std::chrono::steady_clock::now();
-                       enhanced_orb::Extraction r = extractor->extract(gray);
-                       return Features{std::move(r.keypoints), r.descriptors, msSince(start)};
-                     }});
+    for (const char* name : {"baseline", "paper", "cv::ORB"}) {
+      out.push_back(ev::makeMethod(name, budget));
     }
-    // cv::ORB keeps at most nfeatures: "every corner" asks for more than any frame has.
-    cv::Ptr<cv::ORB> orb = cv::ORB::create(budget ? budget : 1000000, 1.2f, 8);
-    out.push_back({"cv::ORB", budget, [orb](const cv::Mat& gray) {
-                     Features f;
-                     const auto start = std::chrono::steady_clock::now();
-                     orb->detectAndCompute(gray, cv::noArray(), f.keypoints, f.descriptors);
-                     f.ms = msSince(start);
-                     return f;
-                   }});
+    out[out.size() - 2].name = "improved";
   }
   return out;
 }
 
 // Extraction is timed single-threaded, every method alike; matching may use every core.
-Features extractTimed(const Method& m, const cv::Mat& gray) {
+ev::Features extractTimed(const ev::Method& m, const cv::Mat& gray) {
   cv::setNumThreads(1);
-  Features f = m.run(gray);
+  ev::Features f = m.run(gray);
   cv::setNumThreads(-1);
   return f;
 }
 
+// Figure 6's photometric changes, through the evaluation library's.
 struct PhotometricChange {
   std::string kind;  // brightness, gamma, noise
   double value;
   cv::Mat apply(const cv::Mat& gray, std::uint64_t seed) const {
-    cv::Mat out;
-    if (kind == "brightness") {
-      gray.convertTo(out, CV_8U, 1.0 + value);  // I' = saturate(I (1 + s))
-    } else if (kind == "gamma") {
-      cv::Mat lut(1, 256, CV_8U);
-      for (int i = 0; i < 256; ++i) {
-        lut.at<uchar>(i) = cv::saturate_cast<uchar>(255.0 * std::pow(i / 255.0, value));
-      }
-      cv::LUT(gray, lut, out);
-    } else {
-      cv::Mat noise(gray.size(), CV_32F);
-      cv::RNG rng(seed);
-      rng.fill(noise, cv::RNG::NORMAL, 0.0, value);
-      cv::Mat g;
-      gray.convertTo(g, CV_32F);
-      cv::Mat(g + noise).convertTo(out, CV_8U);
-    }
-    return out;
+    return kind == "brightness" ? ev::changeBrightness(gray, value)
+           : kind == "gamma"    ? ev::applyGamma(gray, value)
+                                : ev::addGaussianNoise(gray, value, seed);
   }
 };
 
@@ -356,11 +315,11 @@ int main(int argc, char** argv) {
     }
     fs::create_directories(opt.output);
     const fs::path out = opt.output;
-    const std::vector<Method> all = methods(opt.budgets);
+    const std::vector<ev::Method> all = methods(opt.budgets);
 
     // Per frame (Figure 7 / Table 4) and the means (Table 2). A frame on which a method fails (one
     // pixel wide, say) is reported and left out for every method, so that all compare the same frames.
-    std::vector<std::vector<Features>> features(all.size());
+    std::vector<std::vector<ev::Features>> features(all.size());
     CsvFile per_frame_file(out / "frames.csv");
     std::ofstream& per_frame = per_frame_file.out();
     per_frame << "frame,stamp,method,budget,keypoints,ms\n";
@@ -368,7 +327,7 @@ int main(int argc, char** argv) {
     int skipped = 0;
     for (size_t i = 0; i < frames.size(); ++i) {
       progress("extracting", i, frames.size());
-      std::vector<Features> f(all.size());
+      std::vector<ev::Features> f(all.size());
       try {
         for (size_t m = 0; m < all.size(); ++m) {
           f[m] = extractTimed(all[m], frames[i].gray);
@@ -397,7 +356,7 @@ int main(int argc, char** argv) {
     table2 << "method,budget,frames,keypoints,ms\n";
     for (size_t m = 0; m < all.size(); ++m) {
       double kp = 0.0, ms = 0.0;
-      for (const Features& f : features[m]) {
+      for (const ev::Features& f : features[m]) {
         kp += f.keypoints.size();
         ms += f.ms;
       }
@@ -423,8 +382,8 @@ int main(int argc, char** argv) {
       for (size_t c = 0; c < photometric.size(); ++c) {
         const cv::Mat changed = photometric[c].apply(frames[i].gray, 1000 + i);
         for (size_t m = 0; m < all.size(); ++m) {
-          const Features& ref = features[m][i];
-          const Features f = extractTimed(all[m], changed);
+          const ev::Features& ref = features[m][i];
+          const ev::Features f = extractTimed(all[m], changed);
           const ev::MatchCounts counts =
               ev::matchAndCount(ref.keypoints, ref.descriptors, f.keypoints, f.descriptors, ev::identity());
           Sum& s = sums[{m, c}];
@@ -474,8 +433,8 @@ int main(int argc, char** argv) {
           progress("pairs +" + std::to_string(step) + " " + all[m].name, m, all.size());
           long matches = 0, correct = 0;
           for (const auto& [i, truth] : judged) {
-            const Features& a = features[m][i];
-            const Features& b = features[m][i + step];
+            const ev::Features& a = features[m][i];
+            const ev::Features& b = features[m][i + step];
             const ev::MatchCounts counts =
                 ev::matchAndCount(a.keypoints, a.descriptors, b.keypoints, b.descriptors, truth);
             matches += counts.matches;

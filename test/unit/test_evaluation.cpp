@@ -107,3 +107,29 @@ TEST(Degrade, LowLightDarkensAndAddsSignalDependentNoise) {
     EXPECT_EQ(d.apply(flat, 2).size(), flat.size()) << d.name;
   }
 }
+
+TEST(Degrade, PhotometricChangesAreThePapersFormulas) {
+  cv::Mat ramp(1, 256, CV_8U);
+  for (int i = 0; i < 256; ++i) {
+    ramp.at<uchar>(i) = static_cast<uchar>(i);
+  }
+  const cv::Mat darker = ev::changeBrightness(ramp, -0.6);
+  EXPECT_EQ(darker.at<uchar>(100), 40);                            // 100 x 0.4
+  EXPECT_EQ(ev::changeBrightness(ramp, 0.6).at<uchar>(200), 255);  // saturated
+  const cv::Mat gamma = ev::applyGamma(ramp, 2.0);
+  EXPECT_EQ(gamma.at<uchar>(0), 0);
+  EXPECT_EQ(gamma.at<uchar>(255), 255);
+  EXPECT_EQ(gamma.at<uchar>(64), 16);  // 255 (64/255)^2 = 16.06
+  // The named EuRoC degradations are these changes.
+  EXPECT_EQ(cv::norm(ev::Degradation{"dark"}.apply(ramp, 1), darker, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(ev::Degradation{"gamma_2"}.apply(ramp, 1), gamma, cv::NORM_INF), 0.0);
+  // Noise: the same for a seed, another for another seed, none at sigma 0.
+  const cv::Mat flat(64, 64, CV_8U, cv::Scalar(128));
+  EXPECT_EQ(cv::norm(ev::addGaussianNoise(flat, 10, 7), ev::addGaussianNoise(flat, 10, 7), cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(ev::addGaussianNoise(flat, 10, 7), ev::addGaussianNoise(flat, 10, 8), cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(ev::addGaussianNoise(flat, 0, 7), flat, cv::NORM_INF), 0.0);
+  cv::Scalar mean, sd;
+  cv::meanStdDev(ev::addGaussianNoise(flat, 10, 7), mean, sd);
+  EXPECT_NEAR(sd[0], 10.0, 1.0);
+  EXPECT_EQ(cv::norm(ev::Degradation{"noise_10"}.apply(flat, 7), ev::addGaussianNoise(flat, 10, 7), cv::NORM_INF), 0.0);
+}

@@ -29,6 +29,12 @@ cv::Mat lowLight(const cv::Mat& gray, const cv::Mat& light, double uniform_light
 cv::Mat spotlightField(cv::Size size, double floor = 0.08);
 cv::Mat gradientField(cv::Size size, double floor = 0.08);
 
+// Photometric changes of the paper's Figure 6 and of the EuRoC tests: brightness I' = saturate(I (1 + s)),
+// a gamma curve I' = 255 (I / 255)^g, and additive Gaussian noise of `sigma` gray levels (seeded).
+cv::Mat changeBrightness(const cv::Mat& gray, double s);
+cv::Mat applyGamma(const cv::Mat& gray, double g);
+cv::Mat addGaussianNoise(const cv::Mat& gray, double sigma, std::uint64_t seed);
+
 // A named degradation; `apply` is deterministic for a given seed.
 struct Degradation {
   std::string name;
