@@ -29,17 +29,8 @@ failed_report() {  # a step the others need did not finish
   exit 1
 }
 
-missing=()
-for p in g++-aarch64-linux-gnu qemu-user cmake; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "aarch64: installing ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo=sudo
-  { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"; } \
-    >>"$LOG" 2>&1 || failed_report install
-fi
+bash "$ROOT/scripts/install_packages.sh" aarch64 g++-aarch64-linux-gnu qemu-user cmake >>"$LOG" 2>&1 \
+  || failed_report install
 bash "$ROOT/scripts/aarch64_sysroot.sh" "$BUILD/arm64" >>"$LOG" 2>&1 || failed_report sysroot
 SYSROOT=$BUILD/arm64/sysroot
 

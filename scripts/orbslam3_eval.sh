@@ -55,17 +55,7 @@ log() { echo "orbslam3_eval: $*"; }
 # --- what it needs ---------------------------------------------------------------------------------
 PACKAGES=(build-essential cmake libopencv-dev libeigen3-dev libboost-serialization-dev libssl-dev
   python3-numpy libglew-dev libepoxy-dev libgl1-mesa-dev libwayland-dev libxkbcommon-dev wayland-protocols)
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  log "installing ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo=sudo
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
-fi
+bash "$ROOT/scripts/install_packages.sh" orbslam3_eval "${PACKAGES[@]}"
 [ -f "$ROOT/devel/lib/libenhanced_orb_core.so" ] && [ -x "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" ] \
   || bash "$ROOT/scripts/setup.sh"
 

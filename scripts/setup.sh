@@ -28,17 +28,7 @@ PACKAGES=(
   clang libclang-rt-14-dev valgrind
 )
 
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo=sudo
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
-fi
+bash "$ROOT/scripts/install_packages.sh" setup "${PACKAGES[@]}"
 
 echo "setup: building in $ROOT/build"
 cmake -S "$ROOT" -B "$ROOT/build" -DCATKIN_DEVEL_PREFIX="$ROOT/devel" -DCMAKE_BUILD_TYPE=Release \

@@ -16,16 +16,7 @@ OUT=$(realpath -m "$2")
 shift 2
 DBOW2=$SRC/Thirdparty/DBoW2
 [ -f "$DBOW2/DBoW2/TemplatedVocabulary.h" ] || { echo "train_vocabulary: no DBoW2 under $SRC/Thirdparty" >&2; exit 2; }
-missing=()
-for p in build-essential libopencv-dev pkg-config; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo=sudo
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
-fi
+bash "$HERE/../install_packages.sh" train_vocabulary build-essential libopencv-dev pkg-config
 BIN=$(mktemp -d /tmp/train_vocabulary.XXXXXX)
 trap 'rm -rf "$BIN"' EXIT
 g++ -O2 -std=c++17 -w -I"$DBOW2" "$HERE/train_vocabulary.cpp" "$DBOW2"/DBoW2/*.cpp "$DBOW2"/DUtils/*.cpp \

@@ -48,6 +48,19 @@ Outcome run(const std::string& command) {
   return r;
 }
 
+// A test that reads the shared data: without the file, skipped; failed instead under
+// ENHANCED_ORB_REQUIRE_DATA, which the test command sets.
+#define NEEDS_DATA(path)                              \
+  do {                                                \
+    const std::string needed = (path);                \
+    if (!fs::exists(needed)) {                        \
+      if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) { \
+        FAIL() << needed << " is missing";            \
+      }                                               \
+      GTEST_SKIP() << needed << " is missing";        \
+    }                                                 \
+  } while (false)
+
 class Tools : public ::testing::Test {
 protected:
   void SetUp() override {
@@ -190,12 +203,7 @@ TEST_F(Tools, EvaluateSkipsOneBadFrameAndKeepsTheRest) {
 TEST_F(Tools, CompareRunsTheSequenceEvaluationOnEurocAsShipped) {
   EXPECT_EQ(run(kCompare + " --sequence x --conditions eclipse --output " + quoted(dir_ / "none")).code, 2);
   const std::string moving = ENHANCED_ORB_MOVING_DIR;
-  if (!fs::exists(moving + "/mav0/cam0/sensor.yaml")) {
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
-      FAIL() << moving << " is missing";
-    }
-    GTEST_SKIP() << moving << " is missing";
-  }
+  NEEDS_DATA(moving + "/mav0/cam0/sensor.yaml");
   const fs::path out = dir_ / "seq";
   const Outcome r = run(kCompare + " --sequence " + moving + " --methods default,ORB-SLAM --budgets 500 " +
                         "--conditions unchanged --gaps 5 --sequence-every 10 --output " + quoted(out));
@@ -241,12 +249,7 @@ TEST_F(Tools, CompareRunsTheSequenceEvaluationOnEurocAsShipped) {
 TEST_F(Tools, CompareWritesEachLightConditionAsAEurocFolder) {
   EXPECT_EQ(run(kCompare + " --write-sequence " + quoted(dir_ / "w")).code, 2);  // needs --sequence
   const std::string moving = ENHANCED_ORB_MOVING_DIR;
-  if (!fs::exists(moving + "/mav0/cam0/sensor.yaml")) {
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
-      FAIL() << moving << " is missing";
-    }
-    GTEST_SKIP() << moving << " is missing";
-  }
+  NEEDS_DATA(moving + "/mav0/cam0/sensor.yaml");
   const fs::path out = dir_ / "frames";
   const Outcome r = run(kCompare + " --sequence " + moving + " --conditions unchanged,dip --write-sequence " +
                         quoted(out) + " --output " + quoted(dir_ / "not_written"));
@@ -289,9 +292,7 @@ TEST_F(Tools, CompareWritesEachLightConditionAsAEurocFolder) {
 TEST_F(Tools, CompareSamplesTheStereoPairsAsAsked) {
   EXPECT_EQ(run(kCompare + " --stereo-every 0 --output " + quoted(dir_ / "none")).code, 2);
   EXPECT_EQ(run(kCompare + " --stereo-every x --output " + quoted(dir_ / "none")).code, 2);
-  if (!fs::exists(test::eurocDir() + "/mav0/cam1/data.csv")) {
-    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir();
-  }
+  NEEDS_DATA(test::eurocDir() + "/mav0/cam1/data.csv");
   auto stereoFrames = [&](int every) {
     const fs::path out = dir_ / ("out" + std::to_string(every));
     const Outcome r = run(kCompare + " --euroc " + test::eurocDir() + " --methods default --budgets 500 " +
@@ -320,9 +321,7 @@ TEST_F(Tools, CompareSamplesTheStereoPairsAsAsked) {
 }
 
 TEST_F(Tools, EvaluateExcludesPairsWithoutMotion) {
-  if (!fs::exists(test::eurocDir() + "/mav0/state_groundtruth_estimate0/data.csv")) {
-    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir();
-  }
+  NEEDS_DATA(test::eurocDir() + "/mav0/state_groundtruth_estimate0/data.csv");
   const Outcome r = run(kEvaluate + " --euroc " + test::eurocDir() + " --max-frames 40 --every 100 --steps 1 " +
                         "--pair-every 5 --budgets 1000 --output " + quoted(dir_ / "out"));
   ASSERT_EQ(r.code, 0) << r.output;
