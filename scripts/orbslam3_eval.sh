@@ -2,7 +2,8 @@
 # enhanced_orb inside ORB-SLAM3 v1.0: builds a stock and an adapted copy of a user's ORB-SLAM3 source
 # tree (the adapted one with enhanced_orb::OrbSlamExtractor in place of its ORBextractor, as
 # docs/ORB_SLAM3.md describes), runs both, stereo and monocular, on a EuRoC folder under every light
-# condition of the sequence evaluation (enhanced_orb_compare --write-sequence), and prints a table:
+# condition of the sequence evaluation (enhanced_orb_compare --write-sequence), and prints a table
+# (scripts/report.py orbslam3):
 # frames tracked, "Fail to track local map" events, map resets, maps, ATE RMSE after alignment.
 #
 #   bash scripts/orbslam3_eval.sh SRC VOCABULARY DATA [WORK]
@@ -207,5 +208,5 @@ for r in $(seq 1 "$REPEATS"); do for c in $CONDITIONS; do for s in $SENSORS; do 
   run_one "$b" "$s" "$c" "$r"
 done; done; done; done
 
-python3 "$ROOT/scripts/orbslam3/report.py" "$WORK/runs" "$DATA" | tee "$WORK/results.md"
+python3 "$ROOT/scripts/report.py" orbslam3 "$WORK/runs" "$DATA" | tee "$WORK/results.md"
 log "table in $WORK/results.md"

@@ -6,7 +6,7 @@
 #   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR [MOVING_SEQUENCE_DIR]]]
 #   defaults ../shared/data/euroc/V1_01_easy_micro, ../shared/data/lighting and
 #   ../shared/data/euroc/MH_01_easy_moving (a EuRoC ASL or KITTI odometry folder with ground truth)
-# With COMPARE_DIR set, the comparison's CSV files are kept there (scripts/compare_report.py
+# With COMPARE_DIR set, the comparison's CSV files are kept there (scripts/report.py compare
 # COMPARE_DIR docs/RESULTS.md then rewrites its section without running it again).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -81,8 +81,8 @@ trap 'kill -INT $LAUNCH $LAUNCH1 2>/dev/null || true; wait $LAUNCH $LAUNCH1 2>/d
 python3 "$ROOT/bench/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline.csv" \
   --stereo-topic /cam1/image_raw --stereo-camera cam1
 
-python3 "$ROOT/scripts/results.py" "$OUT"
-python3 "$ROOT/scripts/compare_report.py" "$COMPARE" "$ROOT/docs/RESULTS.md"
-python3 "$ROOT/scripts/sequence_report.py" "${SEQUENCES[@]}" "$ROOT/docs/RESULTS.md"
-python3 "$ROOT/scripts/aarch64_report.py" "$ROOT/build_aarch64/test_results" "$ROOT/docs/RESULTS.md"
+python3 "$ROOT/scripts/report.py" paper "$OUT"
+python3 "$ROOT/scripts/report.py" compare "$COMPARE" "$ROOT/docs/RESULTS.md"
+python3 "$ROOT/scripts/report.py" sequence "${SEQUENCES[@]}" "$ROOT/docs/RESULTS.md"
+python3 "$ROOT/scripts/report.py" aarch64 "$ROOT/build_aarch64/test_results" "$ROOT/docs/RESULTS.md"
 echo "results: done in $(( $(date +%s) - start )) s"

@@ -1,14 +1,15 @@
-#!/usr/bin/env python3
 """Writes the aarch64 section of docs/RESULTS.md (between the aarch64:begin and aarch64:end markers,
 appended when they are missing) from the gtest reports of scripts/aarch64.sh.
 
-    python3 scripts/aarch64_report.py REPORTS_DIR docs/RESULTS.md
+    python3 scripts/report.py aarch64 REPORTS_DIR docs/RESULTS.md
 REPORTS_DIR holds aarch64-test_*.xml (build_aarch64/test_results after bash scripts/aarch64.sh)."""
 import pathlib
 import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
+
+from reports.common import write_section
 
 FUSION = {"0": "as written (each product rounded)", "1": "first product fused", "2": "second product fused"}
 
@@ -28,10 +29,11 @@ def version(command):
         return "?"
 
 
-def main(reports, doc):
+def main(args):
+    reports, doc = (list(args) + ["build_aarch64/test_results", "docs/RESULTS.md"][len(args):])[:2]
     files = sorted(pathlib.Path(reports).glob("aarch64-test_*.xml"))
     if not files:
-        sys.exit(f"aarch64_report.py: no aarch64-test_*.xml in {reports}; run bash scripts/aarch64.sh first")
+        sys.exit(f"report aarch64: no aarch64-test_*.xml in {reports}; run bash scripts/aarch64.sh first")
     rows, facts = [], {}
     total_passed = total_failed = 0
     for path in files:
@@ -48,7 +50,7 @@ def main(reports, doc):
         total_passed += passed
         total_failed += failed
         rows.append(f"| {path.stem.replace('aarch64-', '')} | {passed} | {failed} | {seconds:.0f} |")
-    out = ["<!-- aarch64:begin -->", "## On aarch64 (ARM)", ""]
+    out = ["## On aarch64 (ARM)", ""]
     out.append(f"`bash scripts/aarch64.sh` (part of the test command): the ROS-free libraries and their gtests "
                f"cross-built with {version(['aarch64-linux-gnu-g++', '--version'])} against Debian 12's arm64 "
                "OpenCV 4.6 and run under "
@@ -81,18 +83,6 @@ def main(reports, doc):
             "```",
             "",
             "(method 3 is the default mode, 2 cv::ORB, 0 the baseline, 1 the paper preset; `bash scripts/results.sh` on the board writes the "
-            "whole Speed section with the ratios.)",
-            "<!-- aarch64:end -->"]
-    text = pathlib.Path(doc).read_text()
-    section = "\n".join(out)
-    begin, end = "<!-- aarch64:begin -->", "<!-- aarch64:end -->"
-    if begin in text and end in text:
-        text = text[:text.index(begin)] + section + text[text.index(end) + len(end):]
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    pathlib.Path(doc).write_text(text)
-    print(f"aarch64_report.py: wrote the aarch64 section of {doc}")
-
-
-if __name__ == "__main__":
-    main(*(sys.argv[1:3] if len(sys.argv) >= 3 else ["build_aarch64/test_results", "docs/RESULTS.md"]))
+            "whole Speed section with the ratios.)"]
+    write_section(doc, "aarch64", "\n".join(out))
+    print(f"report aarch64: wrote the aarch64 section of {doc}")

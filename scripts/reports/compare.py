@@ -1,13 +1,14 @@
-#!/usr/bin/env python3
 """Turns enhanced_orb_compare's CSV files into the equal-budget section of docs/RESULTS.md (between
 the compare:begin and compare:end markers) and its plots in docs/results/.
 
-    python3 scripts/compare_report.py RESULTS_DIR [docs/RESULTS.md]
+    python3 scripts/report.py compare RESULTS_DIR [docs/RESULTS.md]
 """
 import collections
 import csv
 import os
 import sys
+
+from reports.common import auc, table, write_section
 
 GROUPS = ["<40", "40-80", "80-170", ">170", "webcam"]
 ORDER = ["default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]
@@ -21,30 +22,8 @@ def group(row):
     return "<40" if m < 40 else "40-80" if m < 80 else "80-170" if m < 170 else ">170"
 
 
-def auc(errors, threshold):
-    """Area under the recall curve up to threshold, normalised (as ev::poseAuc)."""
-    errors = sorted(errors)
-    n = len(errors)
-    if n == 0:
-        return 0.0
-    area, previous, reached = 0.0, 0.0, 0
-    for i, e in enumerate(errors):
-        if e >= threshold:
-            break
-        area += (e - previous) * i / n
-        previous, reached = e, i + 1
-    area += (threshold - previous) * reached / n
-    return area / threshold
-
-
 def mean(values):
     return sum(values) / len(values) if values else 0.0
-
-
-def table(header, rows):
-    out = ["| " + " | ".join(header) + " |", "| " + " | ".join(["---"] + ["---:"] * (len(header) - 1)) + " |"]
-    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
-    return "\n".join(out)
 
 
 def verdict(values):
@@ -74,7 +53,7 @@ This section alone:
 ```bash
 devel/lib/enhanced_orb/enhanced_orb_compare --lighting ../shared/data/lighting \\
   --euroc ../shared/data/euroc/V1_01_easy_micro --output /tmp/compare      # about 15 minutes here
-python3 scripts/compare_report.py /tmp/compare docs/RESULTS.md
+python3 scripts/report.py compare /tmp/compare docs/RESULTS.md
 ```
 """
 
@@ -136,9 +115,11 @@ def summary_cell(values_by_test, mode):
     return "**loses**: " + ", ".join("%s %.2fx" % (t, r) for t, r in sorted(losing.items()))
 
 
-def main():
-    src = sys.argv[1]
-    doc = sys.argv[2] if len(sys.argv) > 2 else os.path.join(os.path.dirname(__file__), "..", "docs", "RESULTS.md")
+def main(args):
+    if not args:
+        sys.exit(__doc__)
+    src = args[0]
+    doc = args[1] if len(args) > 1 else os.path.join(os.path.dirname(__file__), "..", "..", "docs", "RESULTS.md")
     out_dir = os.path.join(os.path.dirname(doc), "results")
     lines = []
 
@@ -232,15 +213,8 @@ def main():
 
     summaries = [summarise(src, budgets, methods, m) for m in ("default", "stretch", "motion") if m in methods]
     section_lines = [INTRO] + summaries + [LOSSES] + lines
-    text = open(doc).read()
-    begin, end = "<!-- compare:begin -->", "<!-- compare:end -->"
-    section = begin + "\n" + "\n".join(section_lines) + "\n" + end
-    if begin in text:
-        text = text[: text.index(begin)] + section + text[text.index(end) + len(end):]
-    else:
-        text += "\n" + section + "\n"
-    open(doc, "w").write(text)
-    print("compare_report: wrote %s" % doc)
+    write_section(doc, "compare", "\n".join(section_lines))
+    print("report compare: wrote %s" % doc)
 
 
 def summarise(src, budgets, methods, mode):
@@ -318,6 +292,3 @@ def plot_groups(correct, budget, methods, path):
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
-
-if __name__ == "__main__":
-    main()

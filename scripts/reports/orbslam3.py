@@ -1,8 +1,7 @@
-#!/usr/bin/env python3
 """The table of scripts/orbslam3_eval.sh: ORB-SLAM3 with its own extractor and with enhanced_orb's,
 stereo and monocular, per light condition, over the repeated runs.
 
-    python3 scripts/orbslam3/report.py RUNS DATA [docs/RESULTS.md]
+    python3 scripts/report.py orbslam3 RUNS DATA [docs/RESULTS.md]
 
 RUNS holds RUNS/<build>/<sensor>/<condition>/<repeat>/ with log.txt and f_run.txt, and RUNS/../frames/
 <condition>/times.txt the frames each run was given (ORB-SLAM3's
@@ -23,6 +22,8 @@ import statistics
 import sys
 
 import numpy as np
+
+from reports.common import write_section
 
 # The sequence evaluation's light conditions in its order (enhanced_orb_compare --help).
 CONDITIONS = ["unchanged", "dim", "dark", "dusk", "lights_out", "flicker", "lamp", "dip"]
@@ -125,7 +126,10 @@ def fmt_ate(values):
     return f"{statistics.median(mm):.1f} ({min(mm):.1f}-{max(mm):.1f})"
 
 
-def main(runs, data, doc=None):
+def main(args):
+    if len(args) not in (2, 3):
+        sys.exit(__doc__)
+    runs, data, doc = (list(args) + [None])[:3]
     runs = pathlib.Path(runs)
     gt_stamps, gt_positions = ground_truth(data)
     builds = sorted((p.name for p in runs.iterdir() if p.is_dir()), key=lambda b: (b != "stock", b != "enhanced_orb-default", b))
@@ -161,17 +165,4 @@ def main(runs, data, doc=None):
     table = "\n".join(lines)
     print(table)
     if doc:
-        path = pathlib.Path(doc)
-        text = path.read_text()
-        section = f"<!-- orbslam3:begin -->\n{table}\n<!-- orbslam3:end -->"
-        if "<!-- orbslam3:begin -->" in text:
-            text = re.sub(r"<!-- orbslam3:begin -->.*<!-- orbslam3:end -->", lambda _: section, text, flags=re.S)
-        else:
-            text = text.rstrip("\n") + "\n\n" + section + "\n"
-        path.write_text(text)
-
-
-if __name__ == "__main__":
-    if len(sys.argv) not in (3, 4):
-        sys.exit(__doc__)
-    main(*sys.argv[1:])
+        write_section(doc, "orbslam3", table)

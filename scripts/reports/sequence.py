@@ -1,9 +1,8 @@
-#!/usr/bin/env python3
 """Turns the sequence files of enhanced_orb_compare (sequence_pose.csv, sequence_tracking.csv) into
 the real-camera-motion section of docs/RESULTS.md (between the sequence:begin and sequence:end
 markers) and its plot docs/results/sequence.png.
 
-    python3 scripts/sequence_report.py RESULTS_DIR [RESULTS_DIR ...] [docs/RESULTS.md]
+    python3 scripts/report.py sequence RESULTS_DIR [RESULTS_DIR ...] [docs/RESULTS.md]
 
 Several folders (runs of the same frames under other labels) are read as one.
 """
@@ -14,7 +13,7 @@ import os
 import statistics
 import sys
 
-from compare_report import auc, table
+from reports.common import auc, table, write_section
 
 ORDER = ["default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]
 TESTED = ["default", "motion"]  # this package's modes, each against the best rival
@@ -68,7 +67,7 @@ Reproduce (about 30 minutes here at one budget):
 ```bash
 devel/lib/enhanced_orb/enhanced_orb_compare --sequence ../shared/data/euroc/MH_01_easy_moving \\
   --budgets 1000 --sequence-every 3 --output /tmp/seq
-python3 scripts/sequence_report.py /tmp/seq docs/RESULTS.md
+python3 scripts/report.py sequence /tmp/seq docs/RESULTS.md
 ```
 """
 
@@ -86,10 +85,12 @@ def median_error(values):
     return m
 
 
-def main():
-    args = sys.argv[1:]
+def main(args):
+    args = list(args)
+    if not args:
+        sys.exit(__doc__)
     doc = args.pop() if len(args) > 1 and args[-1].endswith(".md") else \
-        os.path.join(os.path.dirname(__file__), "..", "docs", "RESULTS.md")
+        os.path.join(os.path.dirname(__file__), "..", "..", "docs", "RESULTS.md")
     pose_rows, track_rows = [], []
     for src in args:
         pose_rows += list(csv.DictReader(open(os.path.join(src, "sequence_pose.csv"))))
@@ -97,7 +98,7 @@ def main():
         if os.path.exists(track_path):
             track_rows += list(csv.DictReader(open(track_path)))
     if not pose_rows:
-        sys.exit("sequence_report: no rows in " + " ".join(args))
+        sys.exit("report sequence: no rows in " + " ".join(args))
 
     errors = collections.defaultdict(list)  # (condition, method, budget[, gap]) -> errors
     for r in pose_rows:
@@ -179,16 +180,8 @@ def main():
          os.path.join(os.path.dirname(os.path.abspath(doc)), "results", "sequence.png"))
     out.append("![Pose AUC@10 and frames tracked per light condition at %d features](results/sequence.png)\n" % mid)
 
-    text = open(doc).read() if os.path.exists(doc) else ""
-    begin, end = "<!-- sequence:begin -->", "<!-- sequence:end -->"
-    section = begin + "\n" + "\n".join(out) + end
-    if begin in text and end in text:
-        text = text[:text.index(begin)] + section + text[text.index(end) + len(end):]
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    with open(doc, "w") as f:
-        f.write(text)
-    print("sequence_report: wrote", doc)
+    write_section(doc, "sequence", "\n".join(out))
+    print("report sequence: wrote", doc)
 
 
 def plot(conditions, methods, budget, a, trk, path):
@@ -217,6 +210,3 @@ def plot(conditions, methods, budget, a, trk, path):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     fig.savefig(path, dpi=90)
 
-
-if __name__ == "__main__":
-    main()
