@@ -29,6 +29,8 @@ if cmake -S "$ROOT" -B "$PORTABLE" -DENHANCED_ORB_PORTABLE=ON -DCATKIN_DEVEL_PRE
 else
   portable_failed "build"
 fi
+# The installed package, used by programs written for cv::ORB and for ORB-SLAM3's ORBextractor.
+bash "$ROOT/scripts/install_check.sh" "$ROOT/build/test_results/enhanced_orb"
 # The ROS-free libraries and gtests once more, cross-built for aarch64 and run under qemu-user.
 bash "$ROOT/scripts/aarch64.sh" "$ROOT/build/test_results/enhanced_orb"
 # The kernels built for AVX2 must not define a function the linker could pick for the

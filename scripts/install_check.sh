@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs the built package to a scratch prefix and builds, against that install only, two programs
+# as their users wrote them (test/install: one for cv::ORB, one for ORB-SLAM3's ORBextractor, C++11),
+# with only the type changed, then runs both on a EuRoC frame. One JUnit report per program.
+#
+#   bash scripts/install_check.sh RESULTS_DIR      (after scripts/setup.sh; scripts/test.sh calls it)
+set -uo pipefail
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+RESULTS=${1:?RESULTS_DIR}
+WORK=$ROOT/build/install_check
+LOG=$WORK/install_check.log
+rm -rf "$WORK" && mkdir -p "$WORK" "$RESULTS"
+: >"$LOG"
+report() {  # PROGRAM PASSED(0/1)
+  if [ "$2" = 0 ]; then
+    printf '<testsuites><testsuite name="installed" tests="1" failures="0"><testcase classname="installed" name="%s"/></testsuite></testsuites>\n' \
+      "$1" >"$RESULTS/installed-$1.xml"
+  else
+    printf '<testsuites><testsuite name="installed" tests="1" failures="1"><testcase classname="installed" name="%s"><failure message="see build/install_check/install_check.log"/></testcase></testsuite></testsuites>\n' \
+      "$1" >"$RESULTS/installed-$1.xml"
+    echo "install_check: $1 failed (log: build/install_check/install_check.log)"
+  fi
+}
+PROGRAMS=(written_for_cv_orb written_for_orb_slam)
+FRAME=$(ls "$ROOT"/../shared/data/euroc/V1_01_easy_micro/mav0/cam0/data/*.png 2>/dev/null | head -n 1)
+if ! cmake --install "$ROOT/build" --prefix "$WORK/prefix" >>"$LOG" 2>&1 \
+    || ! cmake -S "$ROOT/test/install" -B "$WORK/build" -DENHANCED_ORB_PREFIX="$WORK/prefix" >>"$LOG" 2>&1 \
+    || ! make -C "$WORK/build" >>"$LOG" 2>&1 || [ -z "$FRAME" ]; then
+  [ -n "$FRAME" ] || echo "install_check: no EuRoC frame under ../shared" >>"$LOG"
+  for p in "${PROGRAMS[@]}"; do report "$p" 1; done
+  exit 1
+fi
+status=0
+for p in "${PROGRAMS[@]}"; do
+  "$WORK/build/$p" "$FRAME" >>"$LOG" 2>&1
+  rc=$?
+  report "$p" "$rc"
+  ((rc == 0)) || status=1
+done
+exit $status
