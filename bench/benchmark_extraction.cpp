@@ -362,7 +362,7 @@ int main(int argc, char** argv) {
   }
   for (const enhanced_orb::evaluation::FrameRef& ref : enhanced_orb::evaluation::readImageFolder(dir)) {
     std::string error;
-    cv::Mat gray = enhanced_orb::evaluation::readGrayChecked(ref.path, enhanced_orb::evaluation::kMaxPixels, error);
+    cv::Mat gray = enhanced_orb::evaluation::readGrayChecked(ref.path, enhanced_orb::kMaxImagePixels, error);
     if (gray.empty()) {
       std::cerr << "benchmark_extraction: skipped " << error << "\n";
     } else {

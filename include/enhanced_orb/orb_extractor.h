@@ -22,6 +22,10 @@
 
 namespace enhanced_orb {
 
+// The largest image the nodelets and the tools take, 32 Mpixel (about 6000 x 5600): a larger one
+// is refused with a message, not processed. The library itself takes any size.
+constexpr std::int64_t kMaxImagePixels = 32LL << 20;
+
 // Time of each stage of one extraction, in milliseconds. With threads > 1 the levels' stages run
 // side by side: each stage is then its time summed over the levels, and extract_ms (wall clock)
 // is less than their sum.

@@ -62,7 +62,7 @@ GrayImage toGrayImage(const sensor_msgs::ImageConstPtr& msg) {
   if (m.width == 0 || m.height == 0) {
     return failure("empty", "empty " + size + " image dropped");
   }
-  if (static_cast<std::uint64_t>(m.width) * m.height > kMaxImagePixels) {
+  if (static_cast<std::int64_t>(m.width) * m.height > kMaxImagePixels) {
     return failure("huge", size + " image dropped: more than " + std::to_string(kMaxImagePixels) + " pixels");
   }
   const std::uint64_t row_bytes = static_cast<std::uint64_t>(m.width) * spec->bytes_per_pixel;

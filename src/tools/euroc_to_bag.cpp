@@ -45,7 +45,7 @@ int writeCamera(rosbag::Bag& bag, const ev::EurocSequence& seq, const std::strin
   int count = 0;
   for (const ev::FrameRef& frame : seq.frames) {
     std::string error;
-    const cv::Mat image = ev::readGrayChecked(frame.path, ev::kMaxPixels, error);
+    const cv::Mat image = ev::readGrayChecked(frame.path, enhanced_orb::kMaxImagePixels, error);
     if (image.empty()) {
       throw ev::DatasetError(error);
     }

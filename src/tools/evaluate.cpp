@@ -155,7 +155,7 @@ std::vector<Frame> readFrames(const std::vector<ev::FrameRef>& refs) {
   std::vector<Frame> frames;
   for (const ev::FrameRef& ref : refs) {
     std::string error;
-    cv::Mat gray = ev::readGrayChecked(ref.path, ev::kMaxPixels, error);
+    cv::Mat gray = ev::readGrayChecked(ref.path, enhanced_orb::kMaxImagePixels, error);
     if (gray.empty()) {
       std::cerr << "enhanced_orb_evaluate: skipped " << error << "\n";
       continue;

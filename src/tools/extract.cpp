@@ -67,7 +67,7 @@ struct Options {
   bool save_enhanced = false;
   bool save_annotated = false;
   bool time_opencv = false;
-  long long max_pixels = enhanced_orb::evaluation::kMaxPixels;
+  long long max_pixels = enhanced_orb::kMaxImagePixels;
   std::string output;
   std::vector<std::string> images;
 };

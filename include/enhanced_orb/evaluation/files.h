@@ -9,11 +9,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/orb_extractor.h"
+
 namespace enhanced_orb {
 namespace evaluation {
-
-// The largest image the tools decode by default, as the nodelets: 32 Mpixel.
-constexpr std::int64_t kMaxPixels = 32LL * 1024 * 1024;
 
 // Width and height from the header of a PNG, JPEG, PGM/PPM or BMP file, without decoding it;
 // nullopt for another format or a header that cannot be read.

@@ -15,9 +15,6 @@
 
 namespace enhanced_orb {
 
-// Images larger than this are rejected rather than processed (about 6000 x 5600).
-constexpr std::uint64_t kMaxImagePixels = 32ull << 20;
-
 // An input image turned into 8-bit gray, or the reason it cannot be.
 struct GrayImage {
   cv::Mat gray;                           // valid when error is empty; may share the message's buffer
