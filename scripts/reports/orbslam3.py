@@ -156,6 +156,7 @@ def main(args):
     gt_stamps, gt_positions = ground_truth(data)
     builds = sorted((p.name for p in runs.iterdir() if p.is_dir()), key=lambda b: (b != "stock", b != "enhanced_orb-default", b))
     lines = [INTRO]
+    summary = {}  # (sensor, condition, build) -> (mean frames tracked, median ATE in mm or None)
     for sensor in ("stereo", "mono"):
         found = {p.name for b in builds for p in (runs / b / sensor).glob("*") if p.is_dir()}
         conditions = [c for c in CONDITIONS if c in found] + sorted(found - set(CONDITIONS))
@@ -184,9 +185,45 @@ def main(args):
                 note = f" ({crashed} of {len(results)} ended without a trajectory)" if crashed else ""
                 lines.append(f"| {condition} | {run_name(b)} | {tracked:.3f}{note} | {lost:.1f} | {maps:.1f} | "
                              f"{fmt_ate([r['ate'] for r in results])} |")
+                ates = [1000 * r["ate"] for r in results if r["ate"] is not None]
+                summary[(sensor, condition, b)] = (tracked, statistics.median(ates) if ates else None)
         repeats = max(len(list((runs / b / sensor / c).glob("*"))) for b in builds for c in conditions)
         lines.append(f"\n{repeats} run(s) per cell; tracked, local map lost and maps are means over them.\n")
+    if doc:
+        plot(summary, builds, pathlib.Path(doc).resolve().parent / "results" / "orbslam3.png")
+        lines.append("![ORB-SLAM3 with its own extractor and with enhanced_orb's: frames tracked and ATE per "
+                     "light condition](results/orbslam3.png)\n\nAn x marks a cell without a trajectory to score.\n")
     table = "\n".join(lines)
     print(table)
     if doc:
         write_section(doc, "orbslam3", table)
+
+
+def plot(summary, builds, path):
+    """Frames tracked and ATE per light condition, stereo and monocular, one bar per build."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, 2, figsize=(12, 6.5))
+    width = 0.8 / len(builds)
+    for row, sensor in enumerate(("stereo", "mono")):
+        conditions = [c for c in CONDITIONS if any((sensor, c, b) in summary for b in builds)]
+        for col, (index, label) in enumerate(((0, "frames tracked"), (1, "ATE [mm], median of the runs"))):
+            ax = axes[row][col]
+            for k, b in enumerate(builds):
+                values = [summary.get((sensor, c, b), (0.0, None))[index] for c in conditions]
+                xs = [i + (k - (len(builds) - 1) / 2) * width for i in range(len(conditions))]
+                ax.bar(xs, [v if v is not None else 0.0 for v in values], width, label=run_name(b))
+                for x, v in zip(xs, values):
+                    if v is None:  # no trajectory to score
+                        ax.text(x, 0.0, "x", ha="center", va="bottom", fontsize=8)
+            ax.set_xticks(range(len(conditions)))
+            ax.set_xticklabels(conditions, rotation=20, fontsize=8)
+            ax.set_title(f"{'stereo' if sensor == 'stereo' else 'monocular'}: {label}", fontsize=10)
+            if index == 0:
+                ax.set_ylim(0, 1.05)
+    axes[0][0].legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
