@@ -100,9 +100,10 @@ bool parseBool(const std::string& text, bool& out) {
 namespace {
 
 // The parameter table: every parameter of Params once, with its ROS name, the part of Params it
-// belongs to, how it is read and written as text, its range and its meaning. setParam(),
-// paramText(), paramNames(), validate()'s range checks and paramTable() (the tools' usage text,
-// the tests that hold cfg/*.cfg to it) all read it. Defaults are Params' member initialisers.
+// belongs to, how it is read and written as text, its range, its meaning and when it has no effect.
+// setParam(), paramText(), paramNames(), validate()'s range checks, inactiveParameters() and
+// paramTable() (the tools' usage text, the tests that hold cfg/*.cfg to it) all read it. Defaults
+// are Params' member initialisers.
 enum class Group { kSwitch, kEnhance, kThreshold, kOrb };
 
 struct Field {
@@ -114,7 +115,47 @@ struct Field {
   double lo = 0.0, hi = 0.0;                   // the range (numbers only)
   std::function<double(const Params&)> value;  // the value as a number (numbers only)
   const char* meaning = "";
+  // Why the parameter has no effect under a set of parameters, or nullptr when it has one.
+  const char* (*unused)(const Params&) = nullptr;
 };
+
+// The reasons a parameter can have no effect, each checked in the order a field lists them.
+const char* enhancementOff(const Params& p) {
+  return p.enhance_enabled ? nullptr : "the enhancement is off";
+}
+const char* toneCurveOff(const Params& p) {
+  if (const char* why = enhancementOff(p)) {
+    return why;
+  }
+  return p.enhance.gamma_mode == GammaMode::kNever ? "the tone curve is off (gamma_mode never)" : nullptr;
+}
+const char* alphaUnused(const Params& p) {
+  if (const char* why = toneCurveOff(p)) {
+    return why;
+  }
+  return p.enhance.tone_curve == ToneCurve::kStretch ? "not used by tone_curve stretch" : nullptr;
+}
+const char* qualityTestUnused(const Params& p) {
+  if (const char* why = enhancementOff(p)) {
+    return why;
+  }
+  return p.enhance.gamma_mode != GammaMode::kAuto ? "only used when gamma_mode is auto" : nullptr;
+}
+const char* adaptiveOnly(const Params& p) {
+  return p.orb.threshold_mode == ThresholdMode::kFixed ? "only used when threshold_mode is adaptive" : nullptr;
+}
+const char* fixedOnly(const Params& p) {
+  return p.orb.threshold_mode == ThresholdMode::kAdaptive ? "only used when threshold_mode is fixed" : nullptr;
+}
+const char* budgetOnly(const Params& p) {
+  return p.orb.max_features == 0 ? "only used with a budget (max_features > 0)" : nullptr;
+}
+const char* candidateRatioUnused(const Params& p) {
+  if (const char* why = budgetOnly(p)) {
+    return why;
+  }
+  return p.orb.noise_floor > 0.0 ? "not used when noise_floor > 0" : nullptr;
+}
 
 template <typename T>
 std::string formatNumber(T value) {
@@ -126,7 +167,8 @@ std::string formatNumber(T value) {
 
 // A numeric field reached by `at` (which returns a reference into Params), valid in [lo, hi].
 template <typename At>
-Field number(const char* name, Group group, At at, double lo, double hi, const char* meaning) {
+Field number(const char* name, Group group, At at, double lo, double hi, const char* meaning,
+             const char* (*unused)(const Params&) = nullptr) {
   using T = std::remove_reference_t<decltype(at(std::declval<Params&>()))>;
   return {name,
           group,
@@ -136,12 +178,14 @@ Field number(const char* name, Group group, At at, double lo, double hi, const c
           lo,
           hi,
           [at](const Params& p) { return static_cast<double>(at(const_cast<Params&>(p))); },
-          meaning};
+          meaning,
+          unused};
 }
 
 // A named-enum field.
 template <typename At, typename Parse>
-Field named(const char* name, Group group, At at, Parse parse, const char* type, const char* meaning) {
+Field named(const char* name, Group group, At at, Parse parse, const char* type, const char* meaning,
+            const char* (*unused)(const Params&) = nullptr) {
   return {name,
           group,
           [at, parse](Params& p, const std::string& v) { return parse(v, at(p)); },
@@ -150,7 +194,8 @@ Field named(const char* name, Group group, At at, Parse parse, const char* type,
           0.0,
           0.0,
           nullptr,
-          meaning};
+          meaning,
+          unused};
 }
 
 const std::vector<Field>& fields() {
@@ -161,58 +206,61 @@ const std::vector<Field>& fields() {
       named(
           "tone_curve", Group::kEnhance, [](Params& p) -> ToneCurve& { return p.enhance.tone_curve; }, parseToneCurve,
           "equalize|gamma|stretch",
-          "the tone curve of eqs 10-17: edge-weighted equalisation, the paper's gamma, a linear stretch"),
+          "the tone curve of eqs 10-17: edge-weighted equalisation, the paper's gamma, a linear stretch", toneCurveOff),
       number(
           "alpha", Group::kEnhance, [](Params& p) -> double& { return p.enhance.alpha; }, 0.0, 1.0,
-          "eq 12: smoothness exponent of the weighted histogram"),
+          "eq 12: smoothness exponent of the weighted histogram", alphaUnused),
       number(
           "tau", Group::kEnhance, [](Params& p) -> double& { return p.enhance.tau; }, 0.0, 1.0,
-          "eq 15: lower truncation of gamma (equalize: least slope; stretch: fraction clipped at each end, < 0.5)"),
+          "eq 15: lower truncation of gamma (equalize: least slope; stretch: fraction clipped at each end, < 0.5)",
+          toneCurveOff),
       number(
           "beta", Group::kEnhance, [](Params& p) -> double& { return p.enhance.beta; }, 0.0, 2.0,
-          "eq 20: weight of the brightness mask"),
+          "eq 20: weight of the brightness mask", toneCurveOff),
       number(
           "sharpening", Group::kEnhance, [](Params& p) -> double& { return p.enhance.sharpening; }, -1.0, 5.0,
-          "eq 19: unsharp-mask degree; -1 keeps the filtered image"),
+          "eq 19: unsharp-mask degree; -1 keeps the filtered image", enhancementOff),
       number(
           "blur_ksize", Group::kEnhance, [](Params& p) -> int& { return p.enhance.blur_ksize; }, 1, 31,
-          "eq 8: Gaussian kernel size, odd"),
+          "eq 8: Gaussian kernel size, odd", enhancementOff),
       number(
           "blur_sigma", Group::kEnhance, [](Params& p) -> double& { return p.enhance.blur_sigma; }, 0.1, 10.0,
-          "eq 8: Gaussian sigma"),
+          "eq 8: Gaussian sigma", enhancementOff),
       number(
           "std_threshold", Group::kEnhance, [](Params& p) -> double& { return p.enhance.std_threshold; }, 0.0, 1.0,
-          "quality test: the tone curve runs when lambda exceeds it (gamma_mode auto)"),
+          "quality test: the tone curve runs when lambda exceeds it (gamma_mode auto)", qualityTestUnused),
       named(
           "gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode,
-          "auto|always|never", "when the tone curve runs: by the quality test, always, never"),
+          "auto|always|never", "when the tone curve runs: by the quality test, always, never", enhancementOff),
       number(
           "enhance_threads", Group::kEnhance, [](Params& p) -> int& { return p.enhance.threads; }, 1, 64,
-          "threads of one enhancement (the same result for any count)"),
+          "threads of one enhancement (the same result for any count)", enhancementOff),
       number(
           "grid_size", Group::kThreshold, [](Params& p) -> int& { return p.threshold.grid_size; }, 1, 32,
           "m: the image is cut into m x m cells, each with its own FAST threshold"),
       number(
           "threshold_scale", Group::kThreshold, [](Params& p) -> double& { return p.threshold.threshold_scale; }, 0.0,
-          2.0, "a in C = a |I_mid - t| (eq 33)"),
+          2.0, "a in C = a |I_mid - t| (eq 33)", adaptiveOnly),
       number(
           "c_min", Group::kThreshold, [](Params& p) -> int& { return p.threshold.c_min; }, 1, 200,
-          "C_min (eq 34): the least FAST threshold of a cell"),
+          "C_min (eq 34): the least FAST threshold of a cell", adaptiveOnly),
       named(
           "threshold_mode", Group::kOrb, [](Params& p) -> ThresholdMode& { return p.orb.threshold_mode; },
           parseThresholdMode, "adaptive|fixed", "per-cell truncated adaptive thresholds, or one fixed threshold"),
       number(
           "fast_threshold", Group::kOrb, [](Params& p) -> int& { return p.orb.fast_threshold; }, 1, 200,
-          "the fixed FAST threshold (threshold_mode fixed)"),
+          "the fixed FAST threshold (threshold_mode fixed)", fixedOnly),
       number(
           "max_features", Group::kOrb, [](Params& p) -> int& { return p.orb.max_features; }, 0, 100000,
           "the budget over all levels; 0 keeps every corner"),
       number(
           "candidate_ratio", Group::kOrb, [](Params& p) -> double& { return p.orb.candidate_ratio; }, 0.0, 100.0,
-          "a level spreads its budget over its candidate_ratio x budget strongest corners; 0: over all"),
+          "a level spreads its budget over its candidate_ratio x budget strongest corners; 0: over all",
+          candidateRatioUnused),
       number(
           "noise_floor", Group::kOrb, [](Params& p) -> double& { return p.orb.noise_floor; }, 0.0, 50.0,
-          "> 0: a level spreads its budget over its corners scoring noise_floor x the frame's noise or more"),
+          "> 0: a level spreads its budget over its corners scoring noise_floor x the frame's noise or more",
+          budgetOnly),
       number(
           "n_levels", Group::kOrb, [](Params& p) -> int& { return p.orb.n_levels; }, 1, 16, "pyramid levels"),
       number(
@@ -355,36 +403,10 @@ std::optional<std::string> paramText(const Params& p, const std::string& name) {
 
 std::vector<std::string> inactiveParameters(const Params& p) {
   std::vector<std::string> out;
-  const EnhanceParams& e = p.enhance;
-  if (!p.enhance_enabled) {
-    for (const char* name : {"tone_curve", "alpha", "tau", "beta", "sharpening", "blur_ksize", "blur_sigma",
-                             "std_threshold", "gamma_mode"}) {
-      out.push_back(std::string(name) + ": the enhancement is off");
+  for (const Field& f : fields()) {
+    if (const char* why = f.unused ? f.unused(p) : nullptr) {
+      out.push_back(std::string(f.name) + ": " + why);
     }
-  } else {
-    if (e.gamma_mode != GammaMode::kAuto) {
-      out.push_back("std_threshold: only used when gamma_mode is auto");
-    }
-    if (e.gamma_mode == GammaMode::kNever) {
-      for (const char* name : {"tone_curve", "alpha", "tau", "beta"}) {
-        out.push_back(std::string(name) + ": the tone curve is off (gamma_mode never)");
-      }
-    } else if (e.tone_curve == ToneCurve::kStretch) {
-      out.push_back("alpha: not used by tone_curve stretch");
-    }
-  }
-  if (p.orb.threshold_mode == ThresholdMode::kFixed) {
-    for (const char* name : {"c_min", "threshold_scale"}) {
-      out.push_back(std::string(name) + ": only used when threshold_mode is adaptive");
-    }
-  } else {
-    out.push_back("fast_threshold: only used when threshold_mode is fixed");
-  }
-  if (p.orb.max_features == 0) {
-    out.push_back("candidate_ratio: only used with a budget (max_features > 0)");
-    out.push_back("noise_floor: only used with a budget (max_features > 0)");
-  } else if (p.orb.noise_floor > 0.0) {
-    out.push_back("candidate_ratio: not used when noise_floor > 0");
   }
   return out;
 }

@@ -246,6 +246,28 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   EXPECT_TRUE(has(st, "alpha"));  // the stretch reads quantiles only
   EXPECT_FALSE(has(st, "tau"));
   EXPECT_FALSE(has(st, "beta"));
+  // With the enhancement off every parameter of the enhancement is inactive, and nothing else is
+  // added for it; each named once.
+  Params off;
+  off.enhance_enabled = false;
+  const std::vector<std::string> none = inactiveParameters(off);
+  for (const char* name : {"tone_curve", "alpha", "tau", "beta", "sharpening", "blur_ksize", "blur_sigma",
+                           "std_threshold", "gamma_mode", "enhance_threads"}) {
+    EXPECT_EQ(std::count_if(none.begin(), none.end(),
+                            [&](const std::string& s) {
+                              return s.rfind(std::string(name) + ": the enhancement is off", 0) == 0;
+                            }),
+              1)
+        << name;
+  }
+  EXPECT_FALSE(has(none, "enhance"));
+  Params never;
+  never.enhance.gamma_mode = GammaMode::kNever;
+  const std::vector<std::string> flat = inactiveParameters(never);
+  EXPECT_TRUE(has(flat, "tone_curve") && has(flat, "alpha") && has(flat, "tau") && has(flat, "beta"));
+  EXPECT_FALSE(has(flat, "sharpening"));
+  EXPECT_TRUE(has(inactiveParameters(Params::motion()), "candidate_ratio"));  // noise_floor decides
+  EXPECT_FALSE(has(inactiveParameters(Params::motion()), "noise_floor"));
 }
 
 TEST(Params, StretchClipsLessThanHalfAtEachEnd) {
