@@ -9,12 +9,12 @@
 // parameters come from `base`; the five-argument constructor takes them from the YAML file named by
 // the environment variable ENHANCED_ORB_CONFIG (readParamsFile(): a `preset` and/or parameters by
 // their ROS names, e.g. the package's config/motion.yaml) or, without it, the default mode.
-#ifndef ENHANCED_ORB_ORB_SLAM_EXTRACTOR_H
-#define ENHANCED_ORB_ORB_SLAM_EXTRACTOR_H
-
 //
 // This header needs only C++11 and OpenCV (ORB-SLAM builds as C++11 or C++14); the rest of the
 // package is C++17 behind it.
+#ifndef ENHANCED_ORB_ORB_SLAM_EXTRACTOR_H
+#define ENHANCED_ORB_ORB_SLAM_EXTRACTOR_H
+
 #include <memory>
 #include <vector>
 

@@ -99,6 +99,20 @@ LOSSES = """Where it loses, and why as far as measured (lighting numbers at 1000
 """
 
 
+def budget_tables(budgets, keys, correct, methods, lead_header, lead):
+    """One table per budget: a row per key (its first cells `lead(budget, key)`), each method's mean
+    correct matches from correct[(budget, key, method)], and the default mode's verdict."""
+    lines = []
+    for b in budgets:
+        body = []
+        for k in keys:
+            values = {m: mean(correct[(b, k, m)]) for m in methods}
+            body.append(lead(b, k) + ["%.1f" % values[m] for m in methods] + [verdict(values)])
+        lines.append("**Budget %d**\n" % b)
+        lines.append(table(lead_header + methods + ["default / best rival"], body) + "\n")
+    return lines
+
+
 def summary_cell(values_by_test, mode):
     """'wins (a-bx)' or 'loses: test (r), ...' for `mode` from {test: {method: value}}."""
     ratios = {}
@@ -139,13 +153,8 @@ def main(args):
     lines.append("Correct matches per image pair (mutual Hamming nearest neighbours within 3 px, 4 px on the "
                  "webcams), pairs grouped by the target's mean gray; the last column is the default mode over "
                  "the best of baseline, cv::ORB and CLAHE+cv::ORB.\n")
-    for b in budgets:
-        body = []
-        for g in GROUPS:
-            values = {m: mean(correct[(b, g, m)]) for m in methods}
-            body.append([g, counts[(b, g)]] + ["%.1f" % values[m] for m in methods] + [verdict(values)])
-        lines.append("**Budget %d**\n" % b)
-        lines.append(table(["target mean", "pairs"] + methods + ["default / best rival"], body) + "\n")
+    lines += budget_tables(budgets, GROUPS, correct, methods, ["target mean", "pairs"],
+                           lambda b, g: [g, counts[(b, g)]])
     b = 1000 if 1000 in budgets else budgets[0]
     body = [[g] + ["%.3f" % mean(repeat[(b, g, m)]) for m in methods] for g in GROUPS]
     lines.append("Repeatability at %d (share of the smaller set's keypoints seen again):\n" % b)
@@ -163,13 +172,7 @@ def main(args):
                  "`lowlight` = light x0.2 with shot and read noise (2 e-/DN, 3 e- read), `lowlight_gain` = the "
                  "same amplified x4, `spotlight` / `gradient` = the same sensor under a light field falling to "
                  "0.08, `dark`/`bright` = x0.4 / x1.6, `gamma_*`, `noise_10` = Gaussian noise of 10 DN.\n")
-    for b in budgets:
-        body = []
-        for d in degradations:
-            values = {m: mean(correct[(b, d, m)]) for m in methods}
-            body.append([d] + ["%.1f" % values[m] for m in methods] + [verdict(values)])
-        lines.append("**Budget %d**\n" % b)
-        lines.append(table(["degradation"] + methods + ["default / best rival"], body) + "\n")
+    lines += budget_tables(budgets, degradations, correct, methods, ["degradation"], lambda b, d: [d])
 
     rows = list(csv.DictReader(open(os.path.join(src, "euroc_pairs.csv"))))
     correct = collections.defaultdict(list)

@@ -110,7 +110,7 @@ def run_result(run_dir, gt_stamps, gt_positions, n_frames, with_scale):
         "maps": log.count("New Map created"),
         "tracked": 0.0,
         "ate": None,
-        "crashed": "exit " in log or not (run_dir / "f_run.txt").exists(),
+        "no_trajectory": "exit " in log or not (run_dir / "f_run.txt").exists(),
     }
     trajectory = run_dir / "f_run.txt"
     if not trajectory.exists():
@@ -179,10 +179,10 @@ def main(args):
                 tracked = statistics.mean(r["tracked"] for r in results)
                 lost = statistics.mean(r["lost_local_map"] for r in results)
                 maps = statistics.mean(r["maps"] for r in results)
-                crashed = sum(r["crashed"] for r in results)
+                without = sum(r["no_trajectory"] for r in results)
                 # ORB-SLAM3's examples crash when asked to save the trajectory of a map that never
                 # started: counted as nothing tracked.
-                note = f" ({crashed} of {len(results)} ended without a trajectory)" if crashed else ""
+                note = f" ({without} of {len(results)} ended without a trajectory)" if without else ""
                 lines.append(f"| {condition} | {run_name(b)} | {tracked:.3f}{note} | {lost:.1f} | {maps:.1f} | "
                              f"{fmt_ate([r['ate'] for r in results])} |")
                 ates = [1000 * r["ate"] for r in results if r["ate"] is not None]

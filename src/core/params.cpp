@@ -124,22 +124,16 @@ const char* enhancementOff(const Params& p) {
   return p.enhance_enabled ? nullptr : "the enhancement is off";
 }
 const char* toneCurveOff(const Params& p) {
-  if (const char* why = enhancementOff(p)) {
-    return why;
-  }
-  return p.enhance.gamma_mode == GammaMode::kNever ? "the tone curve is off (gamma_mode never)" : nullptr;
+  const char* why = enhancementOff(p);
+  return why ? why : p.enhance.gamma_mode == GammaMode::kNever ? "the tone curve is off (gamma_mode never)" : nullptr;
 }
 const char* alphaUnused(const Params& p) {
-  if (const char* why = toneCurveOff(p)) {
-    return why;
-  }
-  return p.enhance.tone_curve == ToneCurve::kStretch ? "not used by tone_curve stretch" : nullptr;
+  const char* why = toneCurveOff(p);
+  return why ? why : p.enhance.tone_curve == ToneCurve::kStretch ? "not used by tone_curve stretch" : nullptr;
 }
 const char* qualityTestUnused(const Params& p) {
-  if (const char* why = enhancementOff(p)) {
-    return why;
-  }
-  return p.enhance.gamma_mode != GammaMode::kAuto ? "only used when gamma_mode is auto" : nullptr;
+  const char* why = enhancementOff(p);
+  return why ? why : p.enhance.gamma_mode != GammaMode::kAuto ? "only used when gamma_mode is auto" : nullptr;
 }
 const char* adaptiveOnly(const Params& p) {
   return p.orb.threshold_mode == ThresholdMode::kFixed ? "only used when threshold_mode is adaptive" : nullptr;
@@ -151,10 +145,8 @@ const char* budgetOnly(const Params& p) {
   return p.orb.max_features == 0 ? "only used with a budget (max_features > 0)" : nullptr;
 }
 const char* candidateRatioUnused(const Params& p) {
-  if (const char* why = budgetOnly(p)) {
-    return why;
-  }
-  return p.orb.noise_floor > 0.0 ? "not used when noise_floor > 0" : nullptr;
+  const char* why = budgetOnly(p);
+  return why ? why : p.orb.noise_floor > 0.0 ? "not used when noise_floor > 0" : nullptr;
 }
 
 template <typename T>

@@ -2,34 +2,20 @@
 // Checks what such code relies on: detectAndCompute with a mask, compute on given keypoints,
 // the descriptor's size, type and norm, matching with cv::BFMatcher, drawing with cv::drawKeypoints.
 //   written_for_cv_orb IMAGE     exit 0 when every check holds, 1 otherwise
-#include <iostream>
 #include <vector>
 
 #include <opencv2/features2d.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <enhanced_orb/feature2d.h>
 
-namespace {
+#include "checks.h"
 
-int failures = 0;
-
-void check(bool ok, const char* what) {
-  std::cout << (ok ? "ok     " : "FAILED ") << what << "\n";
-  failures += ok ? 0 : 1;
-}
-
-}  // namespace
+using installed::check;
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: written_for_cv_orb IMAGE\n";
-    return 2;
-  }
-  const cv::Mat image = cv::imread(argv[1], cv::IMREAD_GRAYSCALE);
+  const cv::Mat image = installed::frameFromArguments(argc, argv, "written_for_cv_orb");
   if (image.empty()) {
-    std::cerr << "written_for_cv_orb: cannot read " << argv[1] << "\n";
-    return 1;
+    return argc == 2 ? 1 : 2;
   }
   // was: cv::Ptr<cv::Feature2D> orb = cv::ORB::create(1000);
   cv::Ptr<cv::Feature2D> orb = enhanced_orb::ORB::create();
@@ -64,6 +50,5 @@ int main(int argc, char** argv) {
   cv::Mat drawn;
   cv::drawKeypoints(image, keypoints, drawn);
   check(drawn.size() == image.size() && drawn.type() == CV_8UC3, "cv::drawKeypoints draws them");
-  std::cout << (failures ? "written_for_cv_orb: FAILED\n" : "written_for_cv_orb: passed\n");
-  return failures ? 1 : 0;
+  return installed::verdict("written_for_cv_orb");
 }

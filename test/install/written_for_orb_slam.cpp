@@ -4,37 +4,23 @@
 // the call.
 //   written_for_orb_slam IMAGE     exit 0 when every check holds, 1 otherwise
 #include <cmath>
-#include <iostream>
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <enhanced_orb/orb_slam_extractor.h>
+
+#include "checks.h"
 
 // was: #include "ORBextractor.h" and ORB_SLAM3::ORBextractor
 typedef enhanced_orb::OrbSlamExtractor ORBextractor;
 
-namespace {
-
-int failures = 0;
-
-void check(bool ok, const char* what) {
-  std::cout << (ok ? "ok     " : "FAILED ") << what << "\n";
-  failures += ok ? 0 : 1;
-}
-
-}  // namespace
+using installed::check;
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: written_for_orb_slam IMAGE\n";
-    return 2;
-  }
-  const cv::Mat image = cv::imread(argv[1], cv::IMREAD_GRAYSCALE);
+  const cv::Mat image = installed::frameFromArguments(argc, argv, "written_for_orb_slam");
   if (image.empty()) {
-    std::cerr << "written_for_orb_slam: cannot read " << argv[1] << "\n";
-    return 1;
+    return argc == 2 ? 1 : 2;
   }
   // Tracking::Tracking: nFeatures, scaleFactor, nLevels, iniThFAST, minThFAST from the settings.
   ORBextractor* extractor = new ORBextractor(1200, 1.2f, 8, 20, 7);
@@ -92,6 +78,5 @@ int main(int argc, char** argv) {
   std::vector<cv::KeyPoint> none;
   check((*extractor)(cv::Mat(), cv::Mat(), none, descriptors, lapping) == -1, "an empty image gives -1");
   delete extractor;
-  std::cout << (failures ? "written_for_orb_slam: FAILED\n" : "written_for_orb_slam: passed\n");
-  return failures ? 1 : 0;
+  return installed::verdict("written_for_orb_slam");
 }
