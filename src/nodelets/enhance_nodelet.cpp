@@ -3,7 +3,6 @@
 #include <memory>
 #include <mutex>
 
-#include <dynamic_reconfigure/server.h>
 #include <sensor_msgs/image_encodings.h>
 #include <boost/make_shared.hpp>
 #include <pluginlib/class_list_macros.hpp>
@@ -11,80 +10,34 @@
 #include "enhanced_orb/EnhanceConfig.h"
 #include "enhanced_orb/EnhanceStatus.h"
 #include "enhanced_orb/enhance.h"
-#include "image_nodelet.h"
+#include "reconfigurable_nodelet.h"
 
 namespace enhanced_orb {
 
-class EnhanceNodelet : public ImageNodelet {
+class EnhanceNodelet : public ReconfigurableNodelet<EnhanceConfig> {
 private:
   void advertiseOutputs() override {
-    warnWrongTypes(configTypes<EnhanceConfig>());
-    seedPreset<EnhanceConfig>();
+    startReconfigure();
     pub_ = transport().advertise("image_enhanced", queueSize(), connectCallback(), connectCallback());
     status_pub_ = getNodeHandle().advertise<EnhanceStatus>("enhance_status", queueSize());
     address_pub_ = advertiseAddress("output_address");
-    server_ = std::make_unique<dynamic_reconfigure::Server<EnhanceConfig>>(config_mutex_, getPrivateNodeHandle());
-    server_->setCallback([this](EnhanceConfig& config, uint32_t) {
-      try {
-        reconfigure(config);
-      } catch (const std::exception& e) {
-        NODELET_ERROR("reconfiguration failed, keeping the previous parameters: %s", e.what());
-        config = valid_;
-      }
-    });
   }
 
   bool outputsHaveSubscribers() const override { return pub_.getNumSubscribers() > 0; }
 
-  static EnhanceParams toParams(const EnhanceConfig& config) {
-    EnhanceParams p;
-    parseToneCurve(config.tone_curve, p.tone_curve);
-    p.alpha = config.alpha;
-    p.tau = config.tau;
-    p.beta = config.beta;
-    p.sharpening = config.sharpening;
-    p.blur_ksize = config.blur_ksize;
-    p.blur_sigma = config.blur_sigma;
-    p.std_threshold = config.std_threshold;
-    parseGammaMode(config.gamma_mode, p.gamma_mode);
-    p.threads = config.enhance_threads;
-    return p;
-  }
+  const Fields& configFields() const override { return enhanceConfigFields(); }
 
-  // A refused value is set back to the last valid one in `config`, which the server then reports:
-  // what dynamic_reconfigure shows is what runs, and one bad value never blocks the others.
-  void reconfigure(EnhanceConfig& config) {
+  void adjust(EnhanceConfig& config) override {
     if (config.blur_ksize % 2 == 0) {
       NODELET_WARN("blur_ksize = %d must be odd; using %d", config.blur_ksize, config.blur_ksize + 1);
       config.blur_ksize += 1;
     }
-    std::vector<std::string> problems;
-    ToneCurve curve;
-    if (!parseToneCurve(config.tone_curve, curve)) {
-      problems.push_back("tone_curve '" + config.tone_curve + "' is not " + toneCurveNames());
-    }
-    GammaMode mode;
-    if (!parseGammaMode(config.gamma_mode, mode)) {
-      problems.push_back("gamma_mode '" + config.gamma_mode + "' is not " + gammaModeNames());
-    }
-    for (const std::string& problem : validate(toParams(config))) {
-      problems.push_back(problem);
-    }
-    restoreRefused(config, valid_, problems);
-    const EnhanceParams p = toParams(config);
-    if (!validate(p).empty()) {  // only if the restored values are invalid together
-      NODELET_ERROR("parameters rejected, keeping the previous ones: %s", joinMessages(validate(p)).c_str());
-      config = valid_;
-      return;
-    }
-    Params all;
-    all.enhance = p;
-    all.enhance_enabled = config.enhance;
-    warnInactive(all, configValues(config));
-    valid_ = config;
+  }
+
+  void apply(const EnhanceConfig& /*config*/, const Params& params) override {
     std::lock_guard<std::mutex> lock(params_mutex_);
-    params_ = p;
-    enabled_ = config.enhance;
+    params_ = params.enhance;
+    enabled_ = params.enhance_enabled;
   }
 
   void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
@@ -155,11 +108,8 @@ private:
   std::mutex status_mutex_;
   EnhanceStatus last_status_;
   ros::Publisher address_pub_;
-  boost::recursive_mutex config_mutex_;
-  std::unique_ptr<dynamic_reconfigure::Server<EnhanceConfig>> server_;
   std::mutex params_mutex_;
-  EnhanceConfig valid_ = EnhanceConfig::__getDefault__();  // the last configuration applied
-  EnhanceParams params_ = toParams(valid_);
+  EnhanceParams params_;
   bool enabled_ = true;
   std::mutex workspace_mutex_;
   EnhanceWorkspace workspace_;  // the enhancement's buffers, reused frame after frame

@@ -5,7 +5,6 @@
 #include <mutex>
 #include <sstream>
 
-#include <dynamic_reconfigure/server.h>
 #include <message_filters/cache.h>
 #include <message_filters/subscriber.h>
 #include <sensor_msgs/image_encodings.h>
@@ -17,15 +16,14 @@
 #include "enhanced_orb/draw.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
-#include "image_nodelet.h"
+#include "reconfigurable_nodelet.h"
 
 namespace enhanced_orb {
 
-class ExtractNodelet : public ImageNodelet {
+class ExtractNodelet : public ReconfigurableNodelet<ExtractConfig> {
 private:
   void advertiseOutputs() override {
-    warnWrongTypes(configTypes<ExtractConfig>());
-    seedPreset<ExtractConfig>();
+    startReconfigure();
     ros::NodeHandle& nh = getNodeHandle();
     keypoints_pub_ = nh.advertise<KeypointArray>("keypoints", queueSize(), connectCallbackRos(), connectCallbackRos());
     annotated_pub_ = transport().advertise("image_annotated", queueSize(), connectCallback(), connectCallback());
@@ -34,61 +32,25 @@ private:
     // image with the same stamp; an image without one is drawn without it.
     status_sub_.subscribe(nh, "enhance_status", 10);
     statuses_.connectInput(status_sub_);
-    server_ = std::make_unique<dynamic_reconfigure::Server<ExtractConfig>>(config_mutex_, getPrivateNodeHandle());
-    server_->setCallback([this](ExtractConfig& config, uint32_t) {
-      try {
-        reconfigure(config);
-      } catch (const std::exception& e) {
-        NODELET_ERROR("reconfiguration failed, keeping the previous parameters: %s", e.what());
-        config = valid_;
-      }
-    });
   }
 
   bool outputsHaveSubscribers() const override {
     return keypoints_pub_.getNumSubscribers() > 0 || annotated_pub_.getNumSubscribers() > 0;
   }
 
-  static Params toParams(const ExtractConfig& config) {
+  const Fields& configFields() const override { return extractConfigFields(); }
+
+  // The input is enhanced upstream (EnhanceNodelet) or raw on purpose (baseline).
+  Params baseParams() const override { return withoutEnhancement(); }
+
+  static Params withoutEnhancement() {
     Params p;
-    p.enhance_enabled = false;  // the input is enhanced upstream (EnhanceNodelet) or raw on purpose (baseline)
-    p.threshold.c_min = config.c_min;
-    p.threshold.threshold_scale = config.threshold_scale;
-    p.threshold.grid_size = config.grid_size;
-    p.orb.fast_threshold = config.fast_threshold;
-    p.orb.max_features = config.max_features;
-    p.orb.candidate_ratio = config.candidate_ratio;
-    p.orb.noise_floor = config.noise_floor;
-    p.orb.n_levels = config.n_levels;
-    p.orb.scale_factor = config.scale_factor;
-    p.orb.threads = config.threads;
-    parseThresholdMode(config.threshold_mode, p.orb.threshold_mode);
+    p.enhance_enabled = false;
     return p;
   }
 
-  // A refused value is set back to the last valid one in `config`, which the server then reports:
-  // what dynamic_reconfigure shows is what runs, and one bad value never blocks the others.
-  void reconfigure(ExtractConfig& config) {
-    std::vector<std::string> problems;
-    ThresholdMode mode;
-    if (!parseThresholdMode(config.threshold_mode, mode)) {
-      problems.push_back("threshold_mode '" + config.threshold_mode + "' is not " + thresholdModeNames());
-    }
-    for (const std::string& problem : validate(toParams(config))) {
-      problems.push_back(problem);
-    }
-    restoreRefused(config, valid_, problems);
-    const Params p = toParams(config);
-    std::shared_ptr<const OrbExtractor> extractor;
-    try {
-      extractor = std::make_shared<const OrbExtractor>(p);
-    } catch (const std::invalid_argument& e) {  // only if the restored values are invalid together
-      NODELET_ERROR("parameters rejected, keeping the previous ones: %s", e.what());
-      config = valid_;
-      return;
-    }
-    warnInactive(p, configValues(config));
-    valid_ = config;
+  void apply(const ExtractConfig& config, const Params& params) override {
+    auto extractor = std::make_shared<const OrbExtractor>(params);  // throws std::invalid_argument
     std::lock_guard<std::mutex> lock(params_mutex_);
     extractor_ = extractor;
     draw_ = DrawOptions{config.draw_keypoints, config.draw_orientation, config.draw_grid, config.draw_text,
@@ -148,11 +110,8 @@ private:
   message_filters::Cache<EnhanceStatus> statuses_{32};
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
-  boost::recursive_mutex config_mutex_;
-  std::unique_ptr<dynamic_reconfigure::Server<ExtractConfig>> server_;
   std::mutex params_mutex_;
-  ExtractConfig valid_ = ExtractConfig::__getDefault__();  // the last configuration applied
-  std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>(toParams(valid_));
+  std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>(withoutEnhancement());
   DrawOptions draw_;
 };
 

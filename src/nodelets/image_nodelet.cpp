@@ -248,25 +248,6 @@ void ImageNodelet::warnWrongTypes(const std::map<std::string, std::string>& expe
   }
 }
 
-std::map<std::string, std::string> ImageNodelet::configValues(const dynamic_reconfigure::Config& msg) {
-  std::map<std::string, std::string> values;
-  for (const auto& b : msg.bools) {
-    values[b.name] = b.value ? "true" : "false";
-  }
-  for (const auto& i : msg.ints) {
-    values[i.name] = std::to_string(i.value);
-  }
-  for (const auto& d : msg.doubles) {
-    std::ostringstream text;
-    text << d.value;
-    values[d.name] = text.str();
-  }
-  for (const auto& str : msg.strs) {
-    values[str.name] = str.value;
-  }
-  return values;
-}
-
 Preset ImageNodelet::readPreset() {
   const std::string name = getPrivateNodeHandle().param<std::string>("preset", "default");
   Preset preset = Preset::kDefault;

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <dynamic_reconfigure/Config.h>
 #include <image_transport/image_transport.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
@@ -60,56 +59,10 @@ protected:
   // `expected`: name -> "bool", "int", "double" or "str" (dynamic_reconfigure's type names).
   void warnWrongTypes(const std::map<std::string, std::string>& expected);
 
-  // The dynamic_reconfigure parameters of ConfigT, each with its type; and a configuration's values
-  // as text, by name.
-  template <class ConfigT>
-  static std::map<std::string, std::string> configTypes() {
-    std::map<std::string, std::string> types;
-    for (const auto& d : ConfigT::__getParamDescriptions__()) {
-      types[d->name] = d->type;
-    }
-    return types;
-  }
-  template <class ConfigT>
-  static std::map<std::string, std::string> configValues(const ConfigT& config) {
-    dynamic_reconfigure::Config msg;
-    config.__toMessage__(msg);
-    return configValues(msg);
-  }
-  static std::map<std::string, std::string> configValues(const dynamic_reconfigure::Config& msg);
-
-  // Reads ~preset (at start) and gives every parameter of ConfigT that the launch file or YAML did
-  // not set the preset's value, so that dynamic_reconfigure starts from it.
-  template <class ConfigT>
-  void seedPreset() {
-    const Params preset = Params::preset(readPreset());
-    ros::NodeHandle& pnh = getPrivateNodeHandle();
-    for (const auto& d : ConfigT::__getParamDescriptions__()) {
-      const std::optional<std::string> text = paramText(preset, d->name);
-      if (text && !pnh.hasParam(d->name)) {
-        setTyped(d->name, d->type, *text);
-      }
-    }
-  }
-
-  // Each problem ("<name> ...": validate()'s messages and unknown names) is logged, and the named
-  // parameter is set back in `config` to its value in `valid`, which the server then reports.
-  template <class ConfigT>
-  void restoreRefused(ConfigT& config, const ConfigT& valid, const std::vector<std::string>& problems) {
-    const std::map<std::string, std::string> kept = configValues(valid);
-    for (const std::string& problem : problems) {
-      const std::string name = problem.substr(0, problem.find(' '));
-      for (const auto& d : ConfigT::__getParamDescriptions__()) {
-        if (d->name == name) {
-          dynamic_reconfigure::Config msg;
-          d->toMessage(msg, valid);
-          d->fromMessage(msg, config);
-        }
-      }
-      const auto it = kept.find(name);
-      NODELET_WARN("%s; keeping %s", problem.c_str(), it != kept.end() ? it->second.c_str() : "the previous value");
-    }
-  }
+  // Reads ~preset, logging it (an unknown name: an error, and the default mode).
+  Preset readPreset();
+  // Sets the private parameter `name` from text as a value of dynamic_reconfigure's `type`.
+  void setTyped(const std::string& name, const std::string& type, const std::string& text);
 
   image_transport::ImageTransport& transport() { return *it_; }
   // ~queue_size: of the input subscription and of every output, so that a subscriber in another
@@ -119,10 +72,7 @@ protected:
 private:
   void onInit() final;
   void connect();
-  void subscribeInput();
-  Preset readPreset();
-  void setTyped(const std::string& name, const std::string& type,
-                const std::string& text);  // with ~image_transport; raw when that transport cannot be loaded
+  void subscribeInput();  // with ~image_transport; raw when that transport cannot be loaded
   void checkStarted();
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);

@@ -1,12 +1,17 @@
-// One source of truth: the dynamic_reconfigure defaults and ranges (cfg/*.cfg) agree with the core
-// library's default mode (Params()) and its validation ranges (validate()).
+// One source of truth: the nodelets' field lists name every cfg/*.cfg field once, and the
+// dynamic_reconfigure defaults and ranges agree with the parameter table (Params(), validate()).
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <set>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include <gtest/gtest.h>
 
-#include "enhanced_orb/EnhanceConfig.h"
-#include "enhanced_orb/ExtractConfig.h"
+#include "config_fields.h"
 #include "enhanced_orb/params.h"
 
 using namespace enhanced_orb;
@@ -35,58 +40,94 @@ void expectSameRange(const std::string& name, T lo, T hi) {
 
 }  // namespace
 
-TEST(ConfigAgreement, EnhanceDefaultsAreTheDefaultMode) {
-  const EnhanceConfig c = EnhanceConfig::__getDefault__();
-  const EnhanceParams e;
-  EXPECT_EQ(c.tone_curve, toString(e.tone_curve));
-  EXPECT_DOUBLE_EQ(c.alpha, e.alpha);
-  EXPECT_DOUBLE_EQ(c.tau, e.tau);
-  EXPECT_DOUBLE_EQ(c.beta, e.beta);
-  EXPECT_DOUBLE_EQ(c.sharpening, e.sharpening);
-  EXPECT_EQ(c.blur_ksize, e.blur_ksize);
-  EXPECT_DOUBLE_EQ(c.blur_sigma, e.blur_sigma);
-  EXPECT_DOUBLE_EQ(c.std_threshold, e.std_threshold);
-  EXPECT_EQ(c.gamma_mode, toString(e.gamma_mode));
-  EXPECT_EQ(c.enhance_threads, e.threads);
-  EXPECT_EQ(c.enhance, Params().enhance_enabled);
+namespace {
+
+// The names a cfg file gives gen.add().
+std::set<std::string> cfgNames(const std::string& file) {
+  std::ifstream in(std::string(ENHANCED_ORB_SOURCE_DIR) + "/cfg/" + file);
+  EXPECT_TRUE(in.good()) << file;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::regex add(R"re(gen\.add\("(\w+)")re");
+  std::set<std::string> names;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), add); it != std::sregex_iterator(); ++it) {
+    names.insert((*it)[1]);
+  }
+  return names;
 }
 
-TEST(ConfigAgreement, ExtractDefaultsAreTheDefaultMode) {
-  const ExtractConfig c = ExtractConfig::__getDefault__();
-  const Params p;
-  EXPECT_EQ(c.threshold_mode, toString(p.orb.threshold_mode));
-  EXPECT_EQ(c.c_min, p.threshold.c_min);
-  EXPECT_DOUBLE_EQ(c.threshold_scale, p.threshold.threshold_scale);
-  EXPECT_EQ(c.grid_size, p.threshold.grid_size);
-  EXPECT_EQ(c.fast_threshold, p.orb.fast_threshold);
-  EXPECT_EQ(c.max_features, p.orb.max_features);
-  EXPECT_DOUBLE_EQ(c.candidate_ratio, p.orb.candidate_ratio);
-  EXPECT_DOUBLE_EQ(c.noise_floor, p.orb.noise_floor);
-  EXPECT_EQ(c.n_levels, p.orb.n_levels);
-  EXPECT_DOUBLE_EQ(c.scale_factor, p.orb.scale_factor);
-  EXPECT_EQ(c.threads, p.orb.threads);
+template <class ConfigT>
+std::set<std::string> fieldNames(const std::vector<ConfigField<ConfigT>>& fields) {
+  std::set<std::string> names;
+  for (const auto& f : fields) {
+    EXPECT_TRUE(names.insert(f.name).second) << f.name << " listed twice";
+  }
+  return names;
+}
+
+bool inTable(const std::string& name) {
+  return paramText(Params(), name).has_value();
+}
+
+// Each field of the table: its cfg default is the default mode's value.
+template <class ConfigT>
+void expectDefaultsOfTheDefaultMode(const std::vector<ConfigField<ConfigT>>& fields) {
+  const ConfigT config = ConfigT::__getDefault__();
+  for (const auto& f : fields) {
+    if (!inTable(f.name)) {
+      continue;
+    }
+    Params p;
+    ASSERT_EQ(setParam(p, f.name, f.text(config)), "") << f.name;
+    EXPECT_EQ(paramText(p, f.name), paramText(Params(), f.name))
+        << f.name << ": the cfg default is not the default mode's";
+  }
+}
+
+// Each numeric field of the table: the cfg's minimum and maximum are accepted, just outside refused.
+template <class ConfigT>
+void expectRangesOfTheLibrary(const std::vector<ConfigField<ConfigT>>& fields) {
+  const ConfigT lo = ConfigT::__getMin__(), hi = ConfigT::__getMax__();
+  int checked = 0;
+  for (const auto& f : fields) {
+    if (!inTable(f.name)) {
+      continue;
+    }
+    if (std::holds_alternative<int ConfigT::*>(f.member)) {
+      const auto m = std::get<int ConfigT::*>(f.member);
+      expectSameRange(f.name, lo.*m, hi.*m);
+      ++checked;
+    } else if (std::holds_alternative<double ConfigT::*>(f.member)) {
+      const auto m = std::get<double ConfigT::*>(f.member);
+      expectSameRange(f.name, lo.*m, hi.*m);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 5);
+}
+
+}  // namespace
+
+TEST(ConfigAgreement, TheNodeletsListEveryCfgFieldOnce) {
+  EXPECT_EQ(fieldNames(enhanceConfigFields()), cfgNames("Enhance.cfg"));
+  EXPECT_EQ(fieldNames(extractConfigFields()), cfgNames("Extract.cfg"));
+}
+
+TEST(ConfigAgreement, EveryParameterOfTheTableIsLive) {
+  std::set<std::string> live = fieldNames(enhanceConfigFields());
+  for (const std::string& name : fieldNames(extractConfigFields())) {
+    EXPECT_TRUE(live.insert(name).second) << name << " is in both nodelets";
+  }
+  for (const std::string& name : paramNames()) {
+    EXPECT_TRUE(live.count(name)) << name << " is in no nodelet's configuration";
+  }
+}
+
+TEST(ConfigAgreement, DefaultsAreTheDefaultMode) {
+  expectDefaultsOfTheDefaultMode(enhanceConfigFields());
+  expectDefaultsOfTheDefaultMode(extractConfigFields());
 }
 
 TEST(ConfigAgreement, RangesAreTheLibrarys) {
-  const EnhanceConfig lo = EnhanceConfig::__getMin__(), hi = EnhanceConfig::__getMax__();
-  expectSameRange("alpha", lo.alpha, hi.alpha);
-  expectSameRange("tau", lo.tau, hi.tau);
-  expectSameRange("beta", lo.beta, hi.beta);
-  expectSameRange("sharpening", lo.sharpening, hi.sharpening);
-  expectSameRange("blur_sigma", lo.blur_sigma, hi.blur_sigma);
-  expectSameRange("std_threshold", lo.std_threshold, hi.std_threshold);
-  expectSameRange("enhance_threads", lo.enhance_threads, hi.enhance_threads);
-  EXPECT_TRUE(accepted("blur_ksize", std::to_string(lo.blur_ksize)));
-  EXPECT_TRUE(accepted("blur_ksize", std::to_string(hi.blur_ksize)));
-  const ExtractConfig xlo = ExtractConfig::__getMin__(), xhi = ExtractConfig::__getMax__();
-  expectSameRange("c_min", xlo.c_min, xhi.c_min);
-  expectSameRange("threshold_scale", xlo.threshold_scale, xhi.threshold_scale);
-  expectSameRange("grid_size", xlo.grid_size, xhi.grid_size);
-  expectSameRange("fast_threshold", xlo.fast_threshold, xhi.fast_threshold);
-  expectSameRange("max_features", xlo.max_features, xhi.max_features);
-  expectSameRange("candidate_ratio", xlo.candidate_ratio, xhi.candidate_ratio);
-  expectSameRange("noise_floor", xlo.noise_floor, xhi.noise_floor);
-  expectSameRange("n_levels", xlo.n_levels, xhi.n_levels);
-  expectSameRange("scale_factor", xlo.scale_factor, xhi.scale_factor);
-  expectSameRange("threads", xlo.threads, xhi.threads);
+  expectRangesOfTheLibrary(enhanceConfigFields());
+  expectRangesOfTheLibrary(extractConfigFields());
 }
