@@ -2,7 +2,7 @@
 """The report generator of docs/RESULTS.md: each section from the files its run wrote
 (scripts/results.sh runs them all; each module of scripts/reports/ is one section).
 
-    python3 scripts/report.py paper [DIR]                      the page itself: enhanced_orb_evaluate's
+    python3 scripts/report.py paper [DIR]                      the page itself: enhanced_orb_compare --paper's
                                                                CSV, the benchmark and the pipeline in DIR
                                                                (default docs/results)
     python3 scripts/report.py compare DIR [DOC]                enhanced_orb_compare --lighting/--euroc

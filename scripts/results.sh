@@ -45,7 +45,7 @@ for run in "1000 3" "500 6" "2000 6"; do
 done
 
 echo "results: evaluation on $EUROC"
-"$ROOT/devel/lib/enhanced_orb/enhanced_orb_evaluate" --euroc "$EUROC" --output "$OUT" --every 19
+"$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --paper --euroc "$EUROC" --output "$OUT" --every 19
 
 echo "results: benchmarks"
 "$ROOT/devel/lib/enhanced_orb/benchmark_extraction" --frames "$EUROC/mav0/cam0/data" --benchmark_min_time=0.2 \

@@ -1,4 +1,4 @@
-"""Turns the CSV files of enhanced_orb_evaluate, the Google Benchmark JSON and the pipeline CSV in
+"""Turns the CSV files of enhanced_orb_compare --paper, the Google Benchmark JSON and the pipeline CSV in
 docs/results/ into plots and docs/RESULTS.md (the page; the other sections fill its markers).
 
     python3 scripts/report.py paper [docs/results]   (run through scripts/results.sh)
@@ -108,7 +108,7 @@ def main(args):
     meta = {k: v.replace(shared, "../shared") for k, v in meta.items()}
     pipeline = read("pipeline.csv")
     if not table2:
-        sys.exit(f"report paper: no table2.csv in {RESULTS}; run enhanced_orb_evaluate first")
+        sys.exit(f"report paper: no table2.csv in {RESULTS}; run enhanced_orb_compare --paper first")
     plots = {kind: plot_figure6(figure6, kind, xlabel, fmt) for kind, xlabel, fmt in [
         ("brightness", "brightness change s [%]", lambda v: 100 * v),
         ("gamma", "gamma", lambda v: v),

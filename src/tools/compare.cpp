@@ -1,5 +1,6 @@
-// enhanced_orb_compare: every method at equal budgets under real and modelled lighting change.
-// Writes CSV files that scripts/results.py turns into the tables and plots of docs/RESULTS.md.
+// enhanced_orb_compare: every method at equal budgets under real and modelled lighting change, and
+// (--paper) the paper's own experiments. Writes CSV files that scripts/report.py turns into the
+// tables and plots of docs/RESULTS.md.
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -22,6 +23,7 @@
 #include "enhanced_orb/evaluation/methods.h"
 #include "enhanced_orb/evaluation/metrics.h"
 #include "enhanced_orb/evaluation/sequence.h"
+#include "paper_experiments.h"
 
 namespace fs = std::filesystem;
 namespace ev = enhanced_orb::evaluation;
@@ -29,6 +31,7 @@ namespace ev = enhanced_orb::evaluation;
 namespace {
 
 const char* const kUsage = R"(usage: enhanced_orb_compare [--lighting DIR] [--euroc DIR] [--sequence DIR] [options]
+       enhanced_orb_compare --paper (--euroc DIR | --images DIR | --bag FILE --topic T) [options]
 
 Compares the extractors at equal budgets (matching: mutual Hamming nearest neighbours).
   --lighting DIR     a folder of image-pair sets (each subfolder with a pairs.csv): correct
@@ -40,6 +43,13 @@ Compares the extractors at equal budgets (matching: mutual Hamming nearest neigh
                      folder with image_0, calib.txt, poses.txt) under light that changes frame by
                      frame: relative pose between frames t and t + gap (AUC at 5/10/20 degrees)
                      and, with a second camera, stereo frame-to-frame tracking by PnP
+  --paper            instead: the paper's experiments (ALGORITHM.md section 4: its original ORB,
+                     its improved ORB = the paper preset, cv::ORB; budgets 0 = every corner and
+                     1000) on the frames of --euroc DIR (pairs judged by its poses), --images DIR
+                     (every .png/.jpg/.pgm in name order) or --bag FILE --topic T; writes
+                     frames.csv, table2.csv, figure6.csv, pairs.csv, meta.csv for
+                     scripts/report.py paper. Its defaults: --budgets 0,1000 --every 10
+                     --pair-every 5 (photometric changes and pairs); --max-frames N uses N frames
 options:
   --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv,
                      sequence_pose.csv, sequence_tracking.csv (default: results/compare)
@@ -92,6 +102,10 @@ bool parsePositive(const std::string& text, int& out) {
 
 struct Options {
   std::string lighting, euroc, sequence, poses, write_sequence, output = "results/compare", label = "default";
+  bool paper = false;
+  std::string images, bag, topic;
+  int max_frames = 0;
+  std::vector<std::string> given;  // the options given
   std::vector<std::string> conditions;
   std::vector<int> gaps;
   int sequence_every = 1;
@@ -547,118 +561,178 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
   track_file.commit();
 }
 
+// Reads one option and its value into `o`; false with `error` set when the value is not valid.
+bool readOption(const std::string& arg, const std::string& v, Options& o, std::string& error) {
+  bool ok = true;
+  std::string* text = arg == "--lighting"         ? &o.lighting
+                      : arg == "--euroc"          ? &o.euroc
+                      : arg == "--sequence"       ? &o.sequence
+                      : arg == "--write-sequence" ? &o.write_sequence
+                      : arg == "--poses"          ? &o.poses
+                      : arg == "--output"         ? &o.output
+                      : arg == "--label"          ? &o.label
+                      : arg == "--images"         ? &o.images
+                      : arg == "--bag"            ? &o.bag
+                      : arg == "--topic"          ? &o.topic
+                                                  : nullptr;
+  if (text) {
+    *text = v;
+  } else if (arg == "--conditions") {
+    o.conditions = splitList(v);
+    const std::vector<ev::LightCondition> known = ev::lightConditions();
+    for (const std::string& c : o.conditions) {
+      ok = ok && std::any_of(known.begin(), known.end(), [&](const ev::LightCondition& k) { return k.name == c; });
+    }
+    ok = ok && !o.conditions.empty();
+  } else if (arg == "--methods") {
+    o.methods = splitList(v);
+  } else if (arg == "--degradations") {
+    o.degradations = splitList(v);
+  } else if (arg == "--set") {
+    const size_t eq = v.find('=');
+    error = eq == std::string::npos ? "expected NAME=VALUE"
+                                    : enhanced_orb::setParam(o.params, v.substr(0, eq), v.substr(eq + 1));
+    if (!error.empty()) {
+      error = "--set " + v + ": " + error;
+      return false;
+    }
+  } else if (arg == "--budgets" || arg == "--steps" || arg == "--gaps") {
+    std::vector<int>& list = arg == "--budgets" ? o.budgets : arg == "--steps" ? o.steps : o.gaps;
+    list.clear();
+    for (const std::string& item : splitList(v)) {
+      int n = 0;
+      ok = ok && parsePositive(item, n);
+      list.push_back(n);
+    }
+    ok = ok && !list.empty();
+  } else if (arg == "--every" || arg == "--pair-every" || arg == "--stereo-every" || arg == "--threads" ||
+             arg == "--sequence-every" || arg == "--max-frames") {
+    int& target = arg == "--every"            ? o.every
+                  : arg == "--pair-every"     ? o.pair_every
+                  : arg == "--stereo-every"   ? o.stereo_every
+                  : arg == "--sequence-every" ? o.sequence_every
+                  : arg == "--max-frames"     ? o.max_frames
+                                              : o.threads;
+    ok = parsePositive(v, target) && target > 0;
+  } else {
+    error = "unknown option " + arg;
+    return false;
+  }
+  if (!ok) {
+    error = "invalid value for " + arg + ": '" + v + "'";
+  }
+  o.given.push_back(arg);
+  return ok;
+}
+
+bool given(const Options& o, const std::string& option) {
+  return std::find(o.given.begin(), o.given.end(), option) != o.given.end();
+}
+
+// What is wrong with the options as a whole; empty when they make one run.
+std::string checkOptions(const Options& o) {
+  if (o.paper) {
+    const int inputs = !o.euroc.empty() + !o.images.empty() + !o.bag.empty();
+    if (inputs != 1 || (!o.bag.empty() && o.topic.empty()) || !o.lighting.empty() || !o.sequence.empty()) {
+      return "--paper takes exactly one of --euroc DIR, --images DIR, --bag FILE --topic T";
+    }
+    return "";
+  }
+  for (const char* option : {"--images", "--bag", "--topic", "--max-frames"}) {
+    if (given(o, option)) {
+      return std::string(option) + " goes with --paper";
+    }
+  }
+  if (o.lighting.empty() && o.euroc.empty() && o.sequence.empty()) {
+    return "give --lighting DIR, --euroc DIR, --sequence DIR or several, or --paper";
+  }
+  const std::vector<std::string> problems = enhanced_orb::validate(o.params);
+  if (!problems.empty()) {
+    return enhanced_orb::joinMessages(problems);
+  }
+  if (!o.write_sequence.empty() && (o.sequence.empty() || !o.lighting.empty() || !o.euroc.empty())) {
+    return "--write-sequence goes with --sequence alone";
+  }
+  return "";
+}
+
+int runPaper(const Options& o) {
+  enhanced_orb::tools::PaperOptions p;
+  p.euroc = o.euroc;
+  p.images = o.images;
+  p.bag = o.bag;
+  p.topic = o.topic;
+  p.output = given(o, "--output") ? o.output : "results";
+  p.max_frames = o.max_frames;
+  p.steps = o.steps;
+  if (given(o, "--budgets")) {
+    p.budgets = o.budgets;
+  }
+  if (given(o, "--every")) {
+    p.every = o.every;
+  }
+  if (given(o, "--pair-every")) {
+    p.pair_every = o.pair_every;
+  }
+  return enhanced_orb::tools::runPaperExperiments(p);
+}
+
+int run(const Options& o) {
+  cv::setNumThreads(1);
+  if (!o.write_sequence.empty()) {
+    writeSequence(o);
+    std::cout << "enhanced_orb_compare: wrote " << o.write_sequence << "\n";
+    return 0;
+  }
+  const std::vector<Runner> all = runners(o);
+  fs::create_directories(o.output);
+  if (!o.lighting.empty()) {
+    compareLighting(o, all);
+  }
+  if (!o.euroc.empty()) {
+    compareEuroc(o, all);
+  }
+  if (!o.sequence.empty()) {
+    compareSequence(o, all);
+  }
+  std::cout << "enhanced_orb_compare: wrote " << o.output << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Options o;
-  std::vector<std::string> settings;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "-h" || arg == "--help") {
       std::cout << kUsage;
       return 0;
     }
+    if (arg == "--paper") {
+      o.paper = true;
+      continue;
+    }
     if (i + 1 >= argc) {
       std::cerr << "enhanced_orb_compare: " << arg << " needs a value\n";
       return 2;
     }
-    const std::string v = argv[++i];
-    bool ok = true;
-    if (arg == "--lighting") {
-      o.lighting = v;
-    } else if (arg == "--euroc") {
-      o.euroc = v;
-    } else if (arg == "--sequence") {
-      o.sequence = v;
-    } else if (arg == "--write-sequence") {
-      o.write_sequence = v;
-    } else if (arg == "--poses") {
-      o.poses = v;
-    } else if (arg == "--conditions") {
-      o.conditions = splitList(v);
-      const std::vector<ev::LightCondition> known = ev::lightConditions();
-      for (const std::string& c : o.conditions) {
-        ok = ok && std::any_of(known.begin(), known.end(), [&](const ev::LightCondition& k) { return k.name == c; });
-      }
-      ok = ok && !o.conditions.empty();
-    } else if (arg == "--output") {
-      o.output = v;
-    } else if (arg == "--label") {
-      o.label = v;
-    } else if (arg == "--methods") {
-      o.methods = splitList(v);
-    } else if (arg == "--degradations") {
-      o.degradations = splitList(v);
-    } else if (arg == "--set") {
-      const size_t eq = v.find('=');
-      const std::string error = eq == std::string::npos
-                                    ? "expected NAME=VALUE"
-                                    : enhanced_orb::setParam(o.params, v.substr(0, eq), v.substr(eq + 1));
-      if (!error.empty()) {
-        std::cerr << "enhanced_orb_compare: --set " << v << ": " << error << "\n";
-        return 2;
-      }
-    } else if (arg == "--budgets" || arg == "--steps" || arg == "--gaps") {
-      std::vector<int>& list = arg == "--budgets" ? o.budgets : arg == "--steps" ? o.steps : o.gaps;
-      list.clear();
-      for (const std::string& item : splitList(v)) {
-        int n = 0;
-        ok = ok && parsePositive(item, n);
-        list.push_back(n);
-      }
-      ok = ok && !list.empty();
-    } else if (arg == "--every" || arg == "--pair-every" || arg == "--stereo-every" || arg == "--threads" ||
-               arg == "--sequence-every") {
-      int& target = arg == "--every"            ? o.every
-                    : arg == "--pair-every"     ? o.pair_every
-                    : arg == "--stereo-every"   ? o.stereo_every
-                    : arg == "--sequence-every" ? o.sequence_every
-                                                : o.threads;
-      ok = parsePositive(v, target) && target > 0;
-    } else {
-      std::cerr << "enhanced_orb_compare: unknown option " << arg << "\n\n" << kUsage;
-      return 2;
-    }
-    if (!ok) {
-      std::cerr << "enhanced_orb_compare: invalid value for " << arg << ": '" << v << "'\n";
+    std::string error;
+    if (!readOption(arg, argv[++i], o, error)) {
+      std::cerr << "enhanced_orb_compare: " << error << "\n"
+                << (error.rfind("unknown", 0) == 0 ? "\n" + std::string(kUsage) : "");
       return 2;
     }
   }
-  if (o.lighting.empty() && o.euroc.empty() && o.sequence.empty()) {
-    std::cerr << "enhanced_orb_compare: give --lighting DIR, --euroc DIR, --sequence DIR or several\n\n" << kUsage;
-    return 2;
-  }
-  const std::vector<std::string> problems = enhanced_orb::validate(o.params);
-  if (!problems.empty()) {
-    std::cerr << "enhanced_orb_compare: " << enhanced_orb::joinMessages(problems) << "\n";
-    return 2;
-  }
-  if (!o.write_sequence.empty() && (o.sequence.empty() || !o.lighting.empty() || !o.euroc.empty())) {
-    std::cerr << "enhanced_orb_compare: --write-sequence goes with --sequence alone\n";
+  const std::string problem = checkOptions(o);
+  if (!problem.empty()) {
+    std::cerr << "enhanced_orb_compare: " << problem << "\n\n" << kUsage;
     return 2;
   }
   try {
-    cv::setNumThreads(1);
-    if (!o.write_sequence.empty()) {
-      writeSequence(o);
-      std::cout << "enhanced_orb_compare: wrote " << o.write_sequence << "\n";
-      return 0;
-    }
-    const std::vector<Runner> all = runners(o);
-    fs::create_directories(o.output);
-    if (!o.lighting.empty()) {
-      compareLighting(o, all);
-    }
-    if (!o.euroc.empty()) {
-      compareEuroc(o, all);
-    }
-    if (!o.sequence.empty()) {
-      compareSequence(o, all);
-    }
+    return o.paper ? runPaper(o) : run(o);
   } catch (const std::exception& e) {
     std::cerr << "\nenhanced_orb_compare: " << e.what() << "\n";
     return 1;
   }
-  std::cout << "enhanced_orb_compare: wrote " << o.output << "\n";
-  return 0;
 }

@@ -120,7 +120,6 @@ protected:
 };
 
 const std::string kExtract = ENHANCED_ORB_EXTRACT_TOOL;
-const std::string kEvaluate = ENHANCED_ORB_EVALUATE_TOOL;
 const std::string kEurocToBag = ENHANCED_ORB_EUROC_TO_BAG_TOOL;
 const std::string kCompare = ENHANCED_ORB_COMPARE_TOOL;
 
@@ -181,13 +180,13 @@ TEST_F(Tools, ExtractOptionParsing) {
   EXPECT_NE(help.output.find("exit codes"), std::string::npos);
 }
 
-TEST_F(Tools, EvaluateSkipsOneBadFrameAndKeepsTheRest) {
+TEST_F(Tools, ComparePaperSkipsOneBadFrameAndKeepsTheRest) {
   for (int i = 0; i < 3; ++i) {
     image("frames/f" + std::to_string(i) + ".png");
   }
   image("frames/f9_thin.png", cv::Size(1, 60));
-  const Outcome r = run(kEvaluate + " --images " + quoted(dir_ / "frames") + " --every 1 --budgets 1000 --output " +
-                        quoted(dir_ / "out"));
+  const Outcome r = run(kCompare + " --paper --images " + quoted(dir_ / "frames") +
+                        " --every 1 --budgets 1000 --output " + quoted(dir_ / "out"));
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("f9_thin.png"), std::string::npos) << r.output;
   std::ifstream frames(dir_ / "out" / "frames.csv");
@@ -196,6 +195,17 @@ TEST_F(Tools, EvaluateSkipsOneBadFrameAndKeepsTheRest) {
     ++rows;
   }
   EXPECT_EQ(rows, 1 + 3 * 3);  // header, 3 frames x 3 methods
+}
+
+TEST_F(Tools, ComparePaperRefusesOptionsOfTheOtherMode) {
+  image("frames/f0.png");
+  const std::string images = " --images " + quoted(dir_ / "frames");
+  for (const std::string& args : {images, " --paper" + images + " --euroc " + quoted(dir_),
+                                  " --paper --bag " + quoted(dir_ / "x.bag"), " --paper" + images + " --lighting x"}) {
+    const Outcome r = run(kCompare + args + " --output " + quoted(dir_ / "out"));
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << args;
+  }
 }
 
 // The moving EuRoC excerpt as ETH ships it (sensor.yaml without a %YAML line): relative poses and
@@ -320,9 +330,9 @@ TEST_F(Tools, CompareSamplesTheStereoPairsAsAsked) {
   }
 }
 
-TEST_F(Tools, EvaluateExcludesPairsWithoutMotion) {
+TEST_F(Tools, ComparePaperExcludesPairsWithoutMotion) {
   NEEDS_DATA(test::eurocDir() + "/mav0/state_groundtruth_estimate0/data.csv");
-  const Outcome r = run(kEvaluate + " --euroc " + test::eurocDir() + " --max-frames 40 --every 100 --steps 1 " +
+  const Outcome r = run(kCompare + " --paper --euroc " + test::eurocDir() + " --max-frames 40 --every 100 --steps 1 " +
                         "--pair-every 5 --budgets 1000 --output " + quoted(dir_ / "out"));
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream pairs(dir_ / "out" / "pairs.csv");
