@@ -226,6 +226,74 @@ void compareLighting(const Options& o, const std::vector<Runner>& all) {
   csv_file.commit();
 }
 
+// Each sampled frame against its degraded copies (identity ground truth), one CSV row each.
+template <typename At>
+void writePhotometric(const Options& o, const Runner& method, const std::vector<ev::Degradation>& degradations,
+                      int n_frames, At at, std::ostream& photometric) {
+  const int n_deg = static_cast<int>(degradations.size());
+  const int none = static_cast<int>(std::find_if(degradations.begin(), degradations.end(),
+                                                 [](const ev::Degradation& d) { return d.name == "none"; }) -
+                                    degradations.begin());
+  for (int i = 0; i < n_frames && none < n_deg; i += o.every) {
+    for (int d = 0; d < n_deg; ++d) {
+      if (d == none) {
+        continue;
+      }
+      const ev::Features& a = at(i, none);
+      const ev::Features& b = at(i, d);
+      const ev::MatchCounts c =
+          ev::matchAndCount(a.keypoints, a.descriptors, b.keypoints, b.descriptors, ev::identity(3.0));
+      photometric << i << "," << degradations[d].name << "," << method.label << "," << method.budget << ","
+                  << b.keypoints.size() << "," << c.matches << "," << c.correct << ","
+                  << ev::repeatability(a.keypoints, b.keypoints) << "," << b.ms << "\n";
+    }
+  }
+}
+
+// EuRoC's pair tests: cam0 frame `first` against cam0 frame first + step (step > 0), or against cam1
+// at the same time (step 0, the stereo pose test).
+struct PairJob {
+  int first, step;
+  const cv::Mat* right = nullptr;
+  ev::RelativePose truth;
+  ev::GroundTruth correct;
+  bool is_static = false;
+};
+
+std::vector<PairJob> pairJobs(const Options& o, const ev::EurocSequence& seq, const ev::EurocSequence& right,
+                              const std::map<std::int64_t, cv::Mat>& right_frames) {
+  std::vector<PairJob> jobs;
+  const int n_frames = static_cast<int>(seq.frames.size());
+  if (seq.camera && seq.trajectory) {
+    const ev::Camera& cam0 = *seq.camera;
+    for (int step : o.steps) {
+      for (int i = 0; i + step < n_frames; i += o.pair_every) {
+        const auto p1 = seq.trajectory->at(seq.frames[i].stamp);
+        const auto p2 = seq.trajectory->at(seq.frames[i + step].stamp);
+        if (p1 && p2) {
+          PairJob job{i, step, nullptr, ev::groundTruthPose(cam0, *p1, cam0, *p2), {}, false};
+          job.is_static = ev::isStatic(job.truth);
+          job.correct = job.is_static ? ev::rotationOnly(cam0, cam0, job.truth) : ev::epipolar(cam0, *p1, *p2);
+          jobs.push_back(job);
+        }
+      }
+    }
+    if (right.camera) {
+      for (int i = 0; i < n_frames; i += o.stereo_every) {
+        const auto pose = seq.trajectory->at(seq.frames[i].stamp);
+        const auto it = right_frames.find(seq.frames[i].stamp);
+        if (pose && it != right_frames.end() && !it->second.empty()) {
+          jobs.push_back({i, 0, &it->second, ev::groundTruthPose(cam0, *pose, *right.camera, *pose),
+                          ev::epipolar(cam0, *pose, *right.camera, *pose), false});
+        }
+      }
+    }
+  } else {
+    std::cerr << "enhanced_orb_compare: " << o.euroc << " has no calibration or ground truth: frame pairs skipped\n";
+  }
+  return jobs;
+}
+
 void compareEuroc(const Options& o, const std::vector<Runner>& all) {
   const ev::EurocSequence seq = ev::readEuroc(o.euroc);
   std::vector<cv::Mat> frames;
@@ -254,43 +322,7 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
     right_frames[f.stamp] = ev::readGray(f.path);
   }
 
-  // Jobs: cam0 frame `first` against cam0 frame first + step (step > 0), or against cam1 at the
-  // same time (step 0, the stereo pose test).
-  struct PairJob {
-    int first, step;
-    const cv::Mat* right = nullptr;
-    ev::RelativePose truth;
-    ev::GroundTruth correct;
-    bool is_static = false;
-  };
-  std::vector<PairJob> jobs;
-  if (seq.camera && seq.trajectory) {
-    const ev::Camera& cam0 = *seq.camera;
-    for (int step : o.steps) {
-      for (int i = 0; i + step < n_frames; i += o.pair_every) {
-        const auto p1 = seq.trajectory->at(seq.frames[i].stamp);
-        const auto p2 = seq.trajectory->at(seq.frames[i + step].stamp);
-        if (p1 && p2) {
-          PairJob job{i, step, nullptr, ev::groundTruthPose(cam0, *p1, cam0, *p2), {}, false};
-          job.is_static = ev::isStatic(job.truth);
-          job.correct = job.is_static ? ev::rotationOnly(cam0, cam0, job.truth) : ev::epipolar(cam0, *p1, *p2);
-          jobs.push_back(job);
-        }
-      }
-    }
-    if (right.camera) {
-      for (int i = 0; i < n_frames; i += o.stereo_every) {
-        const auto pose = seq.trajectory->at(seq.frames[i].stamp);
-        const auto it = right_frames.find(seq.frames[i].stamp);
-        if (pose && it != right_frames.end() && !it->second.empty()) {
-          jobs.push_back({i, 0, &it->second, ev::groundTruthPose(cam0, *pose, *right.camera, *pose),
-                          ev::epipolar(cam0, *pose, *right.camera, *pose), false});
-        }
-      }
-    }
-  } else {
-    std::cerr << "enhanced_orb_compare: " << o.euroc << " has no calibration or ground truth: frame pairs skipped\n";
-  }
+  const std::vector<PairJob> jobs = pairJobs(o, seq, right, right_frames);
 
   ev::AtomicFile photometric_file((fs::path(o.output) / "euroc_photometric.csv").string());
   std::ofstream photometric(photometric_file.temporary());
@@ -306,23 +338,7 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
     progress("EuRoC " + method.label + " " + std::to_string(method.budget), static_cast<int>(m) + 1,
              static_cast<int>(all.size()));
     auto at = [&](int frame, int d) -> const ev::Features& { return features[static_cast<size_t>(frame) * n_deg + d]; };
-    const int none = static_cast<int>(std::find_if(degradations.begin(), degradations.end(),
-                                                   [](const ev::Degradation& d) { return d.name == "none"; }) -
-                                      degradations.begin());
-    for (int i = 0; i < n_frames && none < n_deg; i += o.every) {
-      for (int d = 0; d < n_deg; ++d) {
-        if (d == none) {
-          continue;
-        }
-        const ev::Features& a = at(i, none);
-        const ev::Features& b = at(i, d);
-        const ev::MatchCounts c =
-            ev::matchAndCount(a.keypoints, a.descriptors, b.keypoints, b.descriptors, ev::identity(3.0));
-        photometric << i << "," << degradations[d].name << "," << method.label << "," << method.budget << ","
-                    << b.keypoints.size() << "," << c.matches << "," << c.correct << ","
-                    << ev::repeatability(a.keypoints, b.keypoints) << "," << b.ms << "\n";
-      }
-    }
+    writePhotometric(o, method, degradations, n_frames, at, photometric);
     std::vector<std::string> rows(jobs.size() * n_deg);
     parallelFor(static_cast<int>(rows.size()), o.threads, [&](int w, int k) {
       const PairJob& job = jobs[k / n_deg];
