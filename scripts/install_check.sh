@@ -8,18 +8,21 @@ set -uo pipefail
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 RESULTS=${1:?RESULTS_DIR}
-WORK=$ROOT/build/install_check
-LOG=$WORK/install_check.log
-rm -rf "$WORK" && mkdir -p "$WORK" "$RESULTS"
+LOG=$ROOT/build/install_check.log
+mkdir -p "$RESULTS"
 : >"$LOG"
+# The install lives outside the package folder: roslaunch looks for launch files anywhere below it,
+# and a second pipeline.launch there makes `roslaunch enhanced_orb pipeline.launch` ambiguous.
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/enhanced_orb_install_check.XXXXXX")
+trap 'rm -rf "$WORK"' EXIT
 report() {  # PROGRAM PASSED(0/1)
   if [ "$2" = 0 ]; then
     printf '<testsuites><testsuite name="installed" tests="1" failures="0"><testcase classname="installed" name="%s"/></testsuite></testsuites>\n' \
       "$1" >"$RESULTS/installed-$1.xml"
   else
-    printf '<testsuites><testsuite name="installed" tests="1" failures="1"><testcase classname="installed" name="%s"><failure message="see build/install_check/install_check.log"/></testcase></testsuite></testsuites>\n' \
+    printf '<testsuites><testsuite name="installed" tests="1" failures="1"><testcase classname="installed" name="%s"><failure message="see build/install_check.log"/></testcase></testsuite></testsuites>\n' \
       "$1" >"$RESULTS/installed-$1.xml"
-    echo "install_check: $1 failed (log: build/install_check/install_check.log)"
+    echo "install_check: $1 failed (log: build/install_check.log)"
   fi
 }
 PROGRAMS=(written_for_cv_orb written_for_orb_slam)
