@@ -321,45 +321,12 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   return result;
 }
 
-}  // namespace
-
-WeightedHistogram edgeWeightedHistogram(const cv::Mat& f) {
-  CV_Assert(f.type() == CV_8UC1);
-  std::array<std::uint64_t, 256> counts{};
-  if (!f.empty()) {
-    addEdgeWeights(f, 0, f.rows, counts);
-  }
-  return toWeightedHistogram(counts);
-}
-
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output) {
-  EnhanceWorkspace workspace;
-  return enhance(gray, params, workspace, output);
-}
-
-EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& scratch, cv::Mat output) {
+// The paper's method (tone_curve gamma), in floating point, for a non-empty image whose quality
+// test is in `result`.
+EnhanceResult enhancePaper(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, EnhanceResult result,
+                           EnhanceWorkspace& scratch) {
   const int threads = params.threads;
-  if (!gray.empty() && gray.type() != CV_8UC1) {
-    throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
-  }
-  const std::vector<std::string> problems = validate(params);
-  if (!problems.empty()) {
-    throw std::invalid_argument("enhance: " + joinMessages(problems));
-  }
-  EnhanceResult result;
-  if (gray.empty()) {
-    result.image.create(gray.size(), CV_8UC1);  // as empty as the input (0 x n or n x 0)
-    return result;
-  }
-  result.lambda = imageLambda(gray, &result.mean_gray);
-  result.poor_quality = isPoorQuality(result.lambda, params);
-
-  if (params.tone_curve != ToneCurve::kGamma) {
-    return enhance8Bit(gray, params, output, threads, result, scratch);
-  }
-
-  // The paper's method. Step 4: a bright poor image is enhanced as its negative, and turned back
-  // at the end.
+  // Step 4: a bright poor image is enhanced as its negative, and turned back at the end.
   cv::Mat input;
   result.inverted = result.poor_quality && result.mean_gray > 128.0;
   if (result.inverted) {
@@ -413,6 +380,44 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceW
     cv::bitwise_not(result.image, result.image);
   }
   return result;
+}
+
+}  // namespace
+
+WeightedHistogram edgeWeightedHistogram(const cv::Mat& f) {
+  CV_Assert(f.type() == CV_8UC1);
+  std::array<std::uint64_t, 256> counts{};
+  if (!f.empty()) {
+    addEdgeWeights(f, 0, f.rows, counts);
+  }
+  return toWeightedHistogram(counts);
+}
+
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output) {
+  EnhanceWorkspace workspace;
+  return enhance(gray, params, workspace, output);
+}
+
+EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceWorkspace& scratch, cv::Mat output) {
+  if (!gray.empty() && gray.type() != CV_8UC1) {
+    throw std::invalid_argument("enhance: expected CV_8UC1, got " + cv::typeToString(gray.type()));
+  }
+  const std::vector<std::string> problems = validate(params);
+  if (!problems.empty()) {
+    throw std::invalid_argument("enhance: " + joinMessages(problems));
+  }
+  EnhanceResult result;
+  if (gray.empty()) {
+    result.image.create(gray.size(), CV_8UC1);  // as empty as the input (0 x n or n x 0)
+    return result;
+  }
+  result.lambda = imageLambda(gray, &result.mean_gray);
+  result.poor_quality = isPoorQuality(result.lambda, params);
+
+  if (params.tone_curve != ToneCurve::kGamma) {
+    return enhance8Bit(gray, params, output, params.threads, result, scratch);
+  }
+  return enhancePaper(gray, params, output, result, scratch);
 }
 
 }  // namespace enhanced_orb
