@@ -480,6 +480,68 @@ void writeSequence(const Options& o) {
   }
 }
 
+// The relative-pose pairs of a sequence: frames t and t + gap for each gap, t every `every`-th frame;
+// a pair whose camera barely moved is left out (its pose is not defined).
+struct PosePair {
+  int first, gap;
+  ev::RelativePose truth;
+};
+
+std::vector<PosePair> posePairs(const ev::Sequence& seq, int n, const std::vector<int>& gaps, int every) {
+  std::vector<PosePair> pairs;
+  for (int g : gaps) {
+    for (int i = 0; i + g < n; i += every) {
+      const ev::RelativePose truth = ev::sequencePose(seq, i, i + g);
+      if (!ev::isStatic(truth)) {
+        pairs.push_back({i, g, truth});
+      }
+    }
+  }
+  return pairs;
+}
+
+// One sequence_pose.csv row per pair: mutual matches, essential matrix, error against the truth.
+std::vector<std::string> poseRows(const ev::Sequence& seq, const std::vector<PosePair>& pairs,
+                                  const std::vector<ev::Features>& fl, const std::string& prefix, int threads) {
+  std::vector<std::string> rows(pairs.size());
+  parallelFor(static_cast<int>(pairs.size()), threads, [&](int, int k) {
+    const PosePair& p = pairs[k];
+    const ev::Features& a = fl[p.first];
+    const ev::Features& b = fl[p.first + p.gap];
+    const std::vector<cv::DMatch> matches = ev::mutualMatches(a.descriptors, b.descriptors);
+    std::vector<cv::Point2f> p1, p2;
+    for (const cv::DMatch& mt : matches) {
+      p1.push_back(a.keypoints[mt.queryIdx].pt);
+      p2.push_back(b.keypoints[mt.trainIdx].pt);
+    }
+    const ev::PoseEstimate pose = ev::estimatePose(seq.left, seq.left, p1, p2);
+    const ev::PoseError error = ev::poseError(pose, p.truth);
+    std::ostringstream row;
+    row << prefix << "," << p.first << "," << p.gap << "," << a.keypoints.size() << "," << matches.size() << ","
+        << pose.inliers << "," << error.rotation_deg << "," << error.translation_deg << "\n";
+    rows[k] = row.str();
+  });
+  return rows;
+}
+
+// One sequence_tracking.csv row per frame t < n - 1: the stereo map of t tracked into t + 1.
+std::vector<std::string> trackRows(const ev::Sequence& seq, const std::vector<ev::Features>& fl,
+                                   const std::vector<ev::Features>& fr, const std::string& prefix, int threads) {
+  const int n = static_cast<int>(fl.size());
+  std::vector<std::string> rows(n - 1);
+  parallelFor(n - 1, threads, [&](int, int i) {
+    const ev::StereoMap map = ev::triangulateStereo(seq.left, *seq.right, fl[i].keypoints, fl[i].descriptors,
+                                                    fr[i].keypoints, fr[i].descriptors);
+    const ev::TrackResult t =
+        ev::trackFrame(map, seq.left, fl[i + 1].keypoints, fl[i + 1].descriptors, ev::sequencePose(seq, i, i + 1));
+    std::ostringstream row;
+    row << prefix << "," << i << "," << map.points.size() << "," << t.matches << "," << t.inliers << "," << t.tracked()
+        << "," << t.rotation_deg << "," << t.translation_m << "\n";
+    rows[i] = row.str();
+  });
+  return rows;
+}
+
 // Real camera motion under light that changes frame by frame: every method on the same degraded
 // frames (each frame degraded once per condition), relative pose between frames and stereo tracking.
 void compareSequence(const Options& o, const std::vector<Runner>& all) {
@@ -495,19 +557,7 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
     std::cerr << " " << g;
   }
   std::cerr << "\n";
-  struct PosePair {
-    int first, gap;
-    ev::RelativePose truth;
-  };
-  std::vector<PosePair> pairs;
-  for (int g : gaps) {
-    for (int i = 0; i + g < n; i += o.sequence_every) {
-      const ev::RelativePose truth = ev::sequencePose(seq, i, i + g);
-      if (!ev::isStatic(truth)) {  // a pose from a pair that barely moved is not defined
-        pairs.push_back({i, g, truth});
-      }
-    }
-  }
+  const std::vector<PosePair> pairs = posePairs(seq, n, gaps, o.sequence_every);
 
   ev::AtomicFile pose_file((fs::path(o.output) / "sequence_pose.csv").string());
   std::ofstream pose_csv(pose_file.temporary());
@@ -530,39 +580,12 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
         }
       });
       const std::string prefix = seq.name + "," + light.name + "," + method.label + "," + std::to_string(method.budget);
-      std::vector<std::string> pose_rows(pairs.size());
-      parallelFor(static_cast<int>(pairs.size()), o.threads, [&](int, int k) {
-        const PosePair& p = pairs[k];
-        const ev::Features& a = fl[p.first];
-        const ev::Features& b = fl[p.first + p.gap];
-        const std::vector<cv::DMatch> matches = ev::mutualMatches(a.descriptors, b.descriptors);
-        std::vector<cv::Point2f> p1, p2;
-        for (const cv::DMatch& mt : matches) {
-          p1.push_back(a.keypoints[mt.queryIdx].pt);
-          p2.push_back(b.keypoints[mt.trainIdx].pt);
-        }
-        const ev::PoseEstimate pose = ev::estimatePose(seq.left, seq.left, p1, p2);
-        const ev::PoseError error = ev::poseError(pose, p.truth);
-        std::ostringstream row;
-        row << prefix << "," << p.first << "," << p.gap << "," << a.keypoints.size() << "," << matches.size() << ","
-            << pose.inliers << "," << error.rotation_deg << "," << error.translation_deg << "\n";
-        pose_rows[k] = row.str();
-      });
+      const std::vector<std::string> pose_rows = poseRows(seq, pairs, fl, prefix, o.threads);
       for (const std::string& r : pose_rows) {
         pose_csv << r;
       }
       if (stereo) {
-        std::vector<std::string> track_rows(n - 1);
-        parallelFor(n - 1, o.threads, [&](int, int i) {
-          const ev::StereoMap map = ev::triangulateStereo(seq.left, *seq.right, fl[i].keypoints, fl[i].descriptors,
-                                                          fr[i].keypoints, fr[i].descriptors);
-          const ev::TrackResult t = ev::trackFrame(map, seq.left, fl[i + 1].keypoints, fl[i + 1].descriptors,
-                                                   ev::sequencePose(seq, i, i + 1));
-          std::ostringstream row;
-          row << prefix << "," << i << "," << map.points.size() << "," << t.matches << "," << t.inliers << ","
-              << t.tracked() << "," << t.rotation_deg << "," << t.translation_m << "\n";
-          track_rows[i] = row.str();
-        });
+        const std::vector<std::string> track_rows = trackRows(seq, fl, fr, prefix, o.threads);
         for (const std::string& r : track_rows) {
           track_csv << r;
         }
