@@ -213,6 +213,34 @@ std::string planOutputs(const Options& opt, std::vector<fs::path>& stems) {
   return "";
 }
 
+// DIR/<stem>.yml, and the enhanced and annotated images when asked for.
+void writeOutputs(const Options& opt, const std::string& stem, const Extraction& r) {
+  writeResult(stem + ".yml", r);
+  if (opt.save_enhanced) {
+    writeImage(stem + "_enhanced.png", r.image);
+  }
+  if (opt.save_annotated) {
+    std::ostringstream caption;
+    caption << r.keypoints.size() << " keypoints, " << cvRound(r.timings.totalMs() * 10) / 10.0 << " ms";
+    writeImage(stem + "_annotated.png",
+               enhanced_orb::drawAnnotated(r.image, r.keypoints, r.cell_thresholds, caption.str(),
+                                           enhanced_orb::DrawOptions{true, false, true, true, 300}));
+  }
+}
+
+// cv::ORB on `gray` on one thread, whatever --threads says: prints and returns its time in ms.
+double timeOpenCv(cv::ORB& opencv, const cv::Mat& gray, const Options& opt) {
+  std::vector<cv::KeyPoint> kps;
+  cv::Mat descriptors;
+  cv::setNumThreads(1);
+  const auto start = std::chrono::steady_clock::now();
+  opencv.detectAndCompute(gray, cv::noArray(), kps, descriptors);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  cv::setNumThreads(std::max(opt.params.orb.threads, opt.params.enhance.threads));
+  std::cout << ", cv::ORB " << ms << " ms (" << kps.size() << " keypoints)";
+  return ms;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -255,33 +283,14 @@ int main(int argc, char** argv) {
         continue;
       }
       extractor.extract(gray, r);
-      const fs::path& stem = stems[i];
-      writeResult(stem.string() + ".yml", r);
-      if (opt.save_enhanced) {
-        writeImage(stem.string() + "_enhanced.png", r.image);
-      }
-      if (opt.save_annotated) {
-        std::ostringstream caption;
-        caption << r.keypoints.size() << " keypoints, " << cvRound(r.timings.totalMs() * 10) / 10.0 << " ms";
-        writeImage(stem.string() + "_annotated.png",
-                   enhanced_orb::drawAnnotated(r.image, r.keypoints, r.cell_thresholds, caption.str(),
-                                               enhanced_orb::DrawOptions{true, false, true, true, 300}));
-      }
+      writeOutputs(opt, stems[i].string(), r);
       std::cout << path << ": " << r.keypoints.size() << " keypoints, enhance " << r.timings.enhance_ms
                 << " ms, extract " << r.timings.extractMs() << " ms";
       sum_enhance += r.timings.enhance_ms;
       sum_extract += r.timings.extractMs();
       ++timed;
       if (opt.time_opencv) {
-        std::vector<cv::KeyPoint> kps;
-        cv::Mat descriptors;
-        cv::setNumThreads(1);  // cv::ORB on one thread, whatever --threads says
-        const auto start = std::chrono::steady_clock::now();
-        opencv->detectAndCompute(gray, cv::noArray(), kps, descriptors);
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        cv::setNumThreads(std::max(opt.params.orb.threads, opt.params.enhance.threads));
-        sum_opencv += ms;
-        std::cout << ", cv::ORB " << ms << " ms (" << kps.size() << " keypoints)";
+        sum_opencv += timeOpenCv(*opencv, gray, opt);
       }
       std::cout << "\n";
     }
