@@ -106,8 +106,10 @@ private:
   }
 
   ros::Publisher keypoints_pub_;
-  message_filters::Subscriber<EnhanceStatus> status_sub_;
+  // The cache before the subscriber that feeds it: members are destroyed in reverse order, so the
+  // subscriber stops before the cache it delivers to is gone.
   message_filters::Cache<EnhanceStatus> statuses_{32};
+  message_filters::Subscriber<EnhanceStatus> status_sub_;
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
   std::mutex params_mutex_;
