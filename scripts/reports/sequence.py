@@ -91,7 +91,7 @@ reaches 0.587 / 0.401, with cells 0.7 x as wide 0.613 / 0.401 (above the baselin
 darkened copy), and on level 0 alone 0.581 and 0.87-0.98x; spreading the same pool over finer cells
 keeps the correct matches (0.98-1.03x) and loses pose (0.531-0.552); nor is it near-duplicate
 corners (dropping those within 3 px of a stronger one on the same level: 0.577, with 5 px 0.554),
-or corner positions (refining them to a tenth of a pixel by `cv::cornerSubPix`: 0.566-0.571). The settings above that come
+or corner positions (refined below the pixel by `cv::cornerSubPix`: 0.566-0.571). The settings above that come
 near the baseline's pose pay the same way on the EuRoC tables at 1000 (correct matches against the
 default's, over every degradation and pair): `candidate_ratio` 3 0.50-1.04x (`night` pairs 0.56x),
 every corner in cells twice as wide (0.600 / 0.335) 0.38-1.04x, `noise_floor` 8 0.39-1.10x.
