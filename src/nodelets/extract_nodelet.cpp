@@ -106,10 +106,10 @@ private:
   }
 
   ros::Publisher keypoints_pub_;
-  // The cache before the subscriber that feeds it: members are destroyed in reverse order, so the
-  // subscriber stops before the cache it delivers to is gone.
-  message_filters::Cache<EnhanceStatus> statuses_{32};
+  // The subscriber before the cache it feeds: members are destroyed in reverse order, and the
+  // cache's destructor disconnects from the subscriber, which must still exist then.
   message_filters::Subscriber<EnhanceStatus> status_sub_;
+  message_filters::Cache<EnhanceStatus> statuses_{32};
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
   std::mutex params_mutex_;
