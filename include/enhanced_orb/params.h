@@ -122,8 +122,8 @@ std::vector<std::string> validate(const Params& p);
 
 // Sets one parameter by its ROS name from text, e.g. ("alpha", "0.5"), ("tone_curve", "gamma"),
 // ("enhance", "false"). Returns an error naming the parameter and the value when the name is
-// unknown or the text is not a whole value of the parameter's type; empty on success. Ranges are
-// checked by validate().
+// unknown, or "<name> '<text>' is not <what it takes>" when the text is not a whole value of the
+// parameter's type; empty on success. Ranges are checked by validate().
 std::string setParam(Params& params, const std::string& name, const std::string& value);
 
 // Every name setParam() knows, in one fixed order.

@@ -255,12 +255,12 @@ WeightedHistogram toWeightedHistogram(const std::array<std::uint64_t, 256>& coun
 // The 8-bit enhancement of tone_curve equalize (the default mode) and stretch: f by OpenCV's
 // fixed-point Gaussian, one global curve from f's histogram, and E as one table where sharpening
 // is -1.
-EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, int threads,
-                          EnhanceResult result, EnhanceWorkspace& scratch) {
+EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, EnhanceResult result,
+                          EnhanceWorkspace& scratch) {
   cv::Mat& f = scratch.f8;
   f.create(gray.size(), CV_8UC1);
   std::vector<int>& starts = scratch.starts;
-  bandStarts(gray.rows, threads, starts);
+  bandStarts(gray.rows, params.threads, starts);
   auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
   // Eqs 8-9: f = I * h, by OpenCV's 8-bit (fixed-point) Gaussian in one pass: a band filtered as a
   // view would round differently along its edges. Nothing beyond a view of a larger image is read.
@@ -325,7 +325,6 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
 // test is in `result`.
 EnhanceResult enhancePaper(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, EnhanceResult result,
                            EnhanceWorkspace& scratch) {
-  const int threads = params.threads;
   // Step 4: a bright poor image is enhanced as its negative, and turned back at the end.
   cv::Mat input;
   result.inverted = result.poor_quality && result.mean_gray > 128.0;
@@ -345,7 +344,7 @@ EnhanceResult enhancePaper(const cv::Mat& gray, const EnhanceParams& params, cv:
   // With threads > 1 the image is cut into horizontal bands worked on side by side; a filter
   // reads the rows around its band, as a whole-image pass does, so the result is the same.
   std::vector<int>& starts = scratch.starts;
-  bandStarts(gray.rows, threads, starts);
+  bandStarts(gray.rows, params.threads, starts);
   auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
 
   // Eqs 8-9: f = I * h, kept in floating point.
@@ -415,7 +414,7 @@ EnhanceResult enhance(const cv::Mat& gray, const EnhanceParams& params, EnhanceW
   result.poor_quality = isPoorQuality(result.lambda, params);
 
   if (params.tone_curve != ToneCurve::kGamma) {
-    return enhance8Bit(gray, params, output, params.threads, result, scratch);
+    return enhance8Bit(gray, params, output, result, scratch);
   }
   return enhancePaper(gray, params, output, result, scratch);
 }

@@ -377,7 +377,16 @@ std::string setParam(Params& p, const std::string& name, const std::string& valu
   if (!field) {
     return "unknown parameter '" + name + "'";
   }
-  return field->parse(p, value) ? std::string() : "invalid value for " + name + ": '" + value + "'";
+  if (field->parse(p, value)) {
+    return "";
+  }
+  // "<name> '<value>' is not ...": the name first, as in validate()'s messages.
+  const std::string type = field->type;
+  const std::string wanted = type == "int"      ? "a whole number"
+                             : type == "double" ? "a number"
+                             : type == "bool"   ? "true or false"
+                                                : type;  // the names an enum reads
+  return name + " '" + value + "' is not " + wanted;
 }
 
 std::vector<std::string> paramNames() {

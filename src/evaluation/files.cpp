@@ -182,5 +182,19 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+AtomicTextFile::AtomicTextFile(const std::string& path) : file_(path), out_(file_.temporary()) {
+  if (!out_) {
+    throw std::runtime_error("cannot write " + path);
+  }
+}
+
+void AtomicTextFile::commit() {
+  out_.close();
+  if (!out_) {
+    throw std::runtime_error("cannot write " + file_.path());
+  }
+  file_.commit();
+}
+
 }  // namespace evaluation
 }  // namespace enhanced_orb

@@ -66,29 +66,20 @@ protected:
   }
 
 private:
-  // The configuration's fields that are in the parameter table, set on baseParams(); a field whose
-  // text the table does not read adds "<name> '<text>' is not <type>" to `problems`.
+  // The configuration's fields that are in the parameter table, set on baseParams(); setParam()'s
+  // message for each field whose text the table does not read goes to `problems`.
   Params toParams(const ConfigT& config, std::vector<std::string>* problems = nullptr) const {
     Params p = baseParams();
     for (const auto& f : configFields()) {
       if (!paramText(p, f.name)) {
         continue;
       }
-      const std::string text = f.text(config);
-      if (!setParam(p, f.name, text).empty() && problems) {
-        problems->push_back(std::string(f.name) + " '" + text + "' is not " + typeOf(f.name));
+      const std::string error = setParam(p, f.name, f.text(config));
+      if (!error.empty() && problems) {
+        problems->push_back(error);
       }
     }
     return p;
-  }
-
-  static std::string typeOf(const std::string& name) {
-    for (const ParamInfo& info : paramTable()) {
-      if (info.name == name) {
-        return info.type;
-      }
-    }
-    return "known";
   }
 
   std::map<std::string, std::string> values(const ConfigT& config) const {

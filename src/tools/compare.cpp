@@ -24,9 +24,11 @@
 #include "enhanced_orb/evaluation/metrics.h"
 #include "enhanced_orb/evaluation/sequence.h"
 #include "paper_experiments.h"
+#include "progress.h"
 
 namespace fs = std::filesystem;
 namespace ev = enhanced_orb::evaluation;
+using enhanced_orb::tools::progress;
 
 namespace {
 
@@ -134,13 +136,6 @@ void parallelFor(int n, int threads, Body body) {
   }
 }
 
-void progress(const std::string& what, int done, int total) {
-  std::cerr << "\r" << what << " " << done << "/" << total << std::string(8, ' ') << std::flush;
-  if (done == total) {
-    std::cerr << "\n";
-  }
-}
-
 // One method (one name and budget) with a private instance per worker thread.
 struct Runner {
   std::string label;
@@ -177,8 +172,8 @@ void compareLighting(const Options& o, const std::vector<Runner>& all) {
       pairs.push_back(std::move(p));
     }
   }
-  ev::AtomicFile csv_file((fs::path(o.output) / "lighting.csv").string());  // renamed when complete
-  std::ofstream csv(csv_file.temporary());
+  ev::AtomicTextFile csv_file((fs::path(o.output) / "lighting.csv").string());  // renamed when complete
+  std::ostream& csv = csv_file.out();
   csv << "set,sequence,target,mean_target,method,budget,keypoints_ref,keypoints_target,matches,correct,"
          "repeatability\n";
   std::vector<std::string> rows(pairs.size() * all.size());
@@ -222,7 +217,6 @@ void compareLighting(const Options& o, const std::vector<Runner>& all) {
   for (const std::string& r : rows) {
     csv << r;
   }
-  csv.close();
   csv_file.commit();
 }
 
@@ -324,11 +318,11 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
 
   const std::vector<PairJob> jobs = pairJobs(o, seq, right, right_frames);
 
-  ev::AtomicFile photometric_file((fs::path(o.output) / "euroc_photometric.csv").string());
-  std::ofstream photometric(photometric_file.temporary());
+  ev::AtomicTextFile photometric_file((fs::path(o.output) / "euroc_photometric.csv").string());
+  std::ostream& photometric = photometric_file.out();
   photometric << "frame,degradation,method,budget,keypoints,matches,correct,repeatability,ms\n";
-  ev::AtomicFile pairs_file((fs::path(o.output) / "euroc_pairs.csv").string());
-  std::ofstream pair_csv(pairs_file.temporary());
+  ev::AtomicTextFile pairs_file((fs::path(o.output) / "euroc_pairs.csv").string());
+  std::ostream& pair_csv = pairs_file.out();
   pair_csv << "frame,pair,static,degradation,method,budget,matches,correct,inliers,rotation_deg,translation_deg\n";
   for (size_t m = 0; m < all.size(); ++m) {
     const Runner& method = all[m];
@@ -370,8 +364,6 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
       pair_csv << r;
     }
   }
-  photometric.close();
-  pair_csv.close();
   photometric_file.commit();
   pairs_file.commit();
 }
@@ -559,11 +551,11 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
   std::cerr << "\n";
   const std::vector<PosePair> pairs = posePairs(seq, n, gaps, o.sequence_every);
 
-  ev::AtomicFile pose_file((fs::path(o.output) / "sequence_pose.csv").string());
-  std::ofstream pose_csv(pose_file.temporary());
+  ev::AtomicTextFile pose_file((fs::path(o.output) / "sequence_pose.csv").string());
+  std::ostream& pose_csv = pose_file.out();
   pose_csv << "sequence,condition,method,budget,frame,gap,keypoints,matches,inliers,rotation_deg,translation_deg\n";
-  ev::AtomicFile track_file((fs::path(o.output) / "sequence_tracking.csv").string());
-  std::ofstream track_csv(track_file.temporary());
+  ev::AtomicTextFile track_file((fs::path(o.output) / "sequence_tracking.csv").string());
+  std::ostream& track_csv = track_file.out();
   track_csv << "sequence,condition,method,budget,frame,map_points,matches,inliers,tracked,rotation_deg,"
                "translation_m\n";
   for (size_t c = 0; c < conditions.size(); ++c) {
@@ -594,8 +586,6 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
                static_cast<int>(conditions.size() * all.size()));
     }
   }
-  pose_csv.close();
-  track_csv.close();
   pose_file.commit();
   track_file.commit();
 }

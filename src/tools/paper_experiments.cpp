@@ -31,6 +31,7 @@
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
 #include "paper_experiments.h"
+#include "progress.h"
 
 namespace fs = std::filesystem;
 namespace ev = enhanced_orb::evaluation;
@@ -95,38 +96,6 @@ std::vector<PhotometricChange> changes() {
   }
   return out;
 }
-
-void progress(const std::string& what, size_t done, size_t total) {
-  const int width = 30;
-  const int filled = total ? static_cast<int>(width * done / total) : width;
-  std::cerr << "\r" << std::left << std::setw(22) << what << " [" << std::string(filled, '#')
-            << std::string(width - filled, '.') << "] " << done << "/" << total << std::flush;
-  if (done == total) {
-    std::cerr << "\n";
-  }
-}
-
-// A CSV file written under a temporary name, renamed by commit(): nothing half-written is left.
-class CsvFile {
-public:
-  explicit CsvFile(const fs::path& path) : file_(path.string()), out_(file_.temporary()) {
-    if (!out_) {
-      throw std::runtime_error("cannot write " + path.string());
-    }
-  }
-  std::ofstream& out() { return out_; }
-  void commit() {
-    out_.close();
-    if (!out_) {
-      throw std::runtime_error("cannot write " + file_.path());
-    }
-    file_.commit();
-  }
-
-private:
-  ev::AtomicFile file_;
-  std::ofstream out_;
-};
 
 // Frames from files, each read with the pixel limit; a file that cannot be read is reported and skipped.
 std::vector<Frame> readFrames(const std::vector<ev::FrameRef>& refs) {
@@ -210,9 +179,10 @@ Input readInput(const PaperOptions& o) {
 // A frame on which a method fails (one pixel wide, say) is reported and left out for every method,
 // so that all compare the same frames; `frames` keeps those that are left. Returns the number left out.
 int extractAll(const std::vector<ev::Method>& all, std::vector<Frame>& frames,
-               std::vector<std::vector<ev::Features>>& features, CsvFile& per_frame_file, CsvFile& table2_file) {
+               std::vector<std::vector<ev::Features>>& features, ev::AtomicTextFile& per_frame_file,
+               ev::AtomicTextFile& table2_file) {
   features.assign(all.size(), {});
-  std::ofstream& per_frame = per_frame_file.out();
+  std::ostream& per_frame = per_frame_file.out();
   per_frame << "frame,stamp,method,budget,keypoints,ms\n";
   std::vector<Frame> kept;
   int skipped = 0;
@@ -239,7 +209,7 @@ int extractAll(const std::vector<ev::Method>& all, std::vector<Frame>& frames,
   }
   progress("extracting", frames.size(), frames.size());
   frames = std::move(kept);
-  std::ofstream& table2 = table2_file.out();
+  std::ostream& table2 = table2_file.out();
   table2 << "method,budget,frames,keypoints,ms\n";
   for (size_t m = 0; m < all.size() && !frames.empty(); ++m) {
     double kp = 0.0, ms = 0.0;
@@ -256,7 +226,7 @@ int extractAll(const std::vector<ev::Method>& all, std::vector<Frame>& frames,
 // Photometric changes of every `every`-th frame against the frame itself (Figure 6, Table 3:
 // identity ground truth), into figure6.csv. Returns the number of frames changed.
 size_t photometricChanges(const std::vector<ev::Method>& all, const std::vector<Frame>& frames,
-                          const std::vector<std::vector<ev::Features>>& features, int every, CsvFile& file) {
+                          const std::vector<std::vector<ev::Features>>& features, int every, ev::AtomicTextFile& file) {
   struct Sum {
     double keypoints = 0, ms = 0, repeatability = 0;
     long matches = 0, correct = 0;
@@ -289,7 +259,7 @@ size_t photometricChanges(const std::vector<ev::Method>& all, const std::vector<
     }
   }
   progress("photometric changes", sampled.size(), sampled.size());
-  std::ofstream& figure6 = file.out();
+  std::ostream& figure6 = file.out();
   figure6 << "method,budget,change,value,frames,keypoints,ms,matches,correct,accuracy,repeatability\n";
   for (const auto& [key, s] : sums) {
     const auto [m, c] = key;
@@ -321,8 +291,9 @@ std::vector<std::pair<size_t, ev::GroundTruth>> judgedPairs(const Input& in, int
 
 // Frame pairs some steps apart (Table 3), judged by the sequence's poses, into pairs.csv.
 void framePairs(const std::vector<ev::Method>& all, const Input& in,
-                const std::vector<std::vector<ev::Features>>& features, const PaperOptions& o, CsvFile& file) {
-  std::ofstream& pairs = file.out();
+                const std::vector<std::vector<ev::Features>>& features, const PaperOptions& o,
+                ev::AtomicTextFile& file) {
+  std::ostream& pairs = file.out();
   pairs << "method,budget,steps,pairs,static_excluded,matches,correct,accuracy\n";
   if (!in.camera || !in.trajectory) {
     std::cerr << kName << "no ground-truth poses and calibration: frame pairs skipped\n";
@@ -364,8 +335,9 @@ int runPaperExperiments(const PaperOptions& o) {
   fs::create_directories(o.output);
   const fs::path out = o.output;
   const std::vector<ev::Method> all = methods(o.budgets);
-  CsvFile per_frame(out / "frames.csv"), table2(out / "table2.csv"), figure6(out / "figure6.csv"),
-      pairs(out / "pairs.csv"), meta_file(out / "meta.csv");
+  ev::AtomicTextFile per_frame((out / "frames.csv").string()), table2((out / "table2.csv").string()),
+      figure6((out / "figure6.csv").string()), pairs((out / "pairs.csv").string()),
+      meta_file((out / "meta.csv").string());
   std::vector<std::vector<ev::Features>> features;
   const int skipped = extractAll(all, in.frames, features, per_frame, table2);
   if (in.frames.empty()) {
@@ -374,7 +346,7 @@ int runPaperExperiments(const PaperOptions& o) {
   }
   const size_t changed = photometricChanges(all, in.frames, features, o.every, figure6);
   framePairs(all, in, features, o, pairs);
-  std::ofstream& meta = meta_file.out();
+  std::ostream& meta = meta_file.out();
   meta << "key,value\n"
        << "input," << in.description << "\n"
        << "frames," << in.frames.size() << "\n"
@@ -384,7 +356,7 @@ int runPaperExperiments(const PaperOptions& o) {
        << "cpu," << cpuModel() << "\n"
        << "cores," << cv::getNumberOfCPUs() << "\n"
        << "opencv," << CV_VERSION << "\n";
-  for (CsvFile* f : {&per_frame, &table2, &figure6, &pairs, &meta_file}) {
+  for (ev::AtomicTextFile* f : {&per_frame, &table2, &figure6, &pairs, &meta_file}) {
     f->commit();  // only now do the results replace any earlier ones
   }
   std::cout << kName << in.frames.size() << " frames (" << skipped << " skipped); wrote " << out.string()

@@ -1,7 +1,14 @@
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 
 #include "enhanced_orb/evaluation/degrade.h"
+#include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/evaluation/metrics.h"
 
 namespace ev = enhanced_orb::evaluation;
@@ -132,4 +139,30 @@ TEST(Degrade, PhotometricChangesAreThePapersFormulas) {
   cv::meanStdDev(ev::addGaussianNoise(flat, 10, 7), mean, sd);
   EXPECT_NEAR(sd[0], 10.0, 1.0);
   EXPECT_EQ(cv::norm(ev::Degradation{"noise_10"}.apply(flat, 7), ev::addGaussianNoise(flat, 10, 7), cv::NORM_INF), 0.0);
+}
+
+// A CSV file appears under its name only when committed, with what was written; an abandoned one
+// leaves nothing, and a folder that does not exist is refused at once.
+TEST(Files, AtomicTextFileAppearsOnlyWhenCommitted) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("eo_atomic_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string path = (dir / "table.csv").string();
+  {
+    AtomicTextFile abandoned(path);
+    abandoned.out() << "half\n";
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "an uncommitted file was left behind";
+  {
+    AtomicTextFile file(path);
+    file.out() << "a,b\n1,2\n";
+    EXPECT_FALSE(fs::exists(path));
+    file.commit();
+  }
+  std::ifstream in(path);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), "a,b\n1,2\n");
+  EXPECT_THROW(AtomicTextFile((dir / "missing" / "x.csv").string()), std::runtime_error);
+  fs::remove_all(dir);
 }

@@ -167,6 +167,9 @@ TEST(Params, SetParamByNameParsesWholeValuesOnly) {
   EXPECT_EQ(p.threshold.c_min, 12);
   EXPECT_NE(setParam(p, "alpha", "abc"), "");
   EXPECT_NE(setParam(p, "tone_curve", "clahe"), "");
+  // The parameter's name comes first (the nodelets restore a refused value by it), then what it takes.
+  EXPECT_EQ(setParam(p, "tone_curve", "clahe"), "tone_curve 'clahe' is not equalize|gamma|stretch");
+  EXPECT_EQ(setParam(p, "c_min", "12.5"), "c_min '12.5' is not a whole number");
   EXPECT_NE(setParam(p, "no_such_parameter", "1"), "");
   EXPECT_EQ(setParam(p, "candidate_ratio", "101"), "");  // parsed; validate() rejects the range
   EXPECT_FALSE(validate(p).empty());

@@ -4,6 +4,7 @@
 #define ENHANCED_ORB_EVALUATION_FILES_H
 
 #include <cstdint>
+#include <fstream>
 #include <optional>
 #include <string>
 
@@ -45,6 +46,20 @@ private:
   std::string path_;
   std::string temporary_;
   bool committed_ = false;
+};
+
+// A text file (the tools' CSV files) written through out() under a temporary name, as AtomicFile.
+// The constructor throws when the file cannot be opened; commit() throws when a write failed
+// instead of renaming a partial file.
+class AtomicTextFile {
+public:
+  explicit AtomicTextFile(const std::string& path);
+  std::ostream& out() { return out_; }
+  void commit();
+
+private:
+  AtomicFile file_;
+  std::ofstream out_;
 };
 
 }  // namespace evaluation
