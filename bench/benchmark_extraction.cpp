@@ -21,6 +21,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/adaptive_threshold.h"
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/enhance.h"
 #include "enhanced_orb/evaluation/dataset.h"
 #include "enhanced_orb/evaluation/files.h"
@@ -128,6 +129,21 @@ const std::vector<Stages>& stages() {
     return out;
   }();
   return all;
+}
+
+// Judging a stream's frames (CameraMotion::update), every other frame shifted by 6 pixels.
+void BM_CameraMotion(benchmark::State& state) {
+  std::vector<cv::Mat> shifted;
+  for (const cv::Mat& f : frames()) {
+    shifted.push_back(f(cv::Rect(6, 0, f.cols - 6, f.rows)).clone());
+    shifted.push_back(f(cv::Rect(0, 0, f.cols - 6, f.rows)).clone());
+  }
+  eo::CameraMotion motion;
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(motion.update(shifted[i++ % shifted.size()]));
+  }
+  state.SetLabel("thumbnail, one DFT and one inverse DFT per frame");
 }
 
 void BM_GrayFromBGR(benchmark::State& state) {
@@ -254,7 +270,7 @@ void BM_Descriptors(benchmark::State& state) {
                         : "every adaptive corner, smoothing + own rBRIEF");
 }
 
-enum Method { kBaseline = 0, kPaper = 1, kOpenCv = 2, kDefault = 3 };
+enum Method { kBaseline = 0, kPaper = 1, kOpenCv = 2, kDefault = 3, kDefaultMoving = 4 };
 
 // Whole frames. range(0): method; range(1): budget (0 = every corner); range(2): threads;
 // range(3): instruction set (this project only).
@@ -288,18 +304,29 @@ void BM_Frame(benchmark::State& state) {
     }
     allocations = g_allocations.load() - before;
   } else {
-    eo::Params p = method == kPaper ? eo::Params::paper() : method == kDefault ? eo::Params() : eo::Params::baseline();
+    const bool stream = method == kDefault || method == kDefaultMoving;
+    eo::Params p = method == kPaper ? eo::Params::paper() : stream ? eo::Params() : eo::Params::baseline();
     p.orb.max_features = budget;
     p.orb.threads = threads;
     p.enhance.threads = threads;
     const eo::OrbExtractor extractor(p);
+    // The default mode as a camera's stream runs it: each frame judged (CameraMotion; the static
+    // EuRoC frames are judged still), then extracted; kDefaultMoving extracts as for a moving camera.
+    eo::CameraMotion motion;
+    eo::ExtractOptions options;
     eo::Extraction out;
+    auto run = [&](const cv::Mat& gray) {
+      if (stream) {
+        options.camera_moving = motion.update(gray) || method == kDefaultMoving;
+      }
+      extractor.extract(gray, options, out);
+    };
     for (int warm = 0; warm < 3; ++warm) {
-      extractor.extract(cycle.next(), out);
+      run(cycle.next());
     }
     const long before = g_allocations.load();
     for (auto _ : state) {
-      extractor.extract(cycle.next(), out);
+      run(cycle.next());
       keypoints += out.keypoints.size();
     }
     allocations = g_allocations.load() - before;
@@ -308,7 +335,8 @@ void BM_Frame(benchmark::State& state) {
   const double iterations = static_cast<double>(state.iterations());
   state.counters["keypoints"] = static_cast<double>(keypoints) / iterations;
   state.counters["allocs_per_frame"] = static_cast<double>(allocations) / iterations;
-  static const char* names[] = {"baseline ORB", "paper preset", "cv::ORB", "default mode"};
+  static const char* names[] = {"baseline ORB", "paper preset", "cv::ORB", "default mode",
+                                "default mode, camera moving"};
   state.SetLabel(std::string(names[method]) + ", " + (budget ? std::to_string(budget) + " features" : "every corner") +
                  ", " + std::to_string(threads) + " thread(s)" +
                  (method == kOpenCv ? std::string() : std::string(", ") + eo::toString(simd)));
@@ -318,7 +346,7 @@ void frameArguments(benchmark::internal::Benchmark* b) {
   const int best = static_cast<int>(eo::supportedSimdLevels().back());
   for (int budget : {500, 1000, 2000, 0}) {
     b->Args({kOpenCv, budget, 1, best});
-    for (int method : {kDefault, kBaseline, kPaper}) {
+    for (int method : {kDefault, kDefaultMoving, kBaseline, kPaper}) {
       for (int threads : {1, 2}) {
         b->Args({method, budget, threads, best});
       }
@@ -333,6 +361,7 @@ void frameArguments(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_GrayFromBGR)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CameraMotion)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Enhance)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Thresholds)->Unit(benchmark::kMillisecond);

@@ -40,6 +40,7 @@ endfunction()
 
 # The method, free of ROS: what nodelets, tools, benchmarks and tests share.
 add_library(enhanced_orb_core
+  ${ENHANCED_ORB_ROOT}/src/core/camera_motion.cpp
   ${ENHANCED_ORB_ROOT}/src/core/noise.cpp
   ${ENHANCED_ORB_ROOT}/src/core/params.cpp
   ${ENHANCED_ORB_ROOT}/src/core/simd.cpp

@@ -22,3 +22,8 @@ target_link_libraries(test_evaluation enhanced_orb_evaluation ${ENHANCED_ORB_GTE
 enhanced_orb_add_gtest(test_sequence ${ENHANCED_ORB_ROOT}/test/unit/test_sequence.cpp)
 target_link_libraries(test_sequence enhanced_orb_evaluation ${ENHANCED_ORB_GTEST_MAIN})
 target_compile_definitions(test_sequence PRIVATE ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}")
+# Camera motion judged from a stream, and the extractors that follow it.
+enhanced_orb_add_gtest(test_camera_motion ${ENHANCED_ORB_ROOT}/test/unit/test_camera_motion.cpp)
+target_link_libraries(test_camera_motion enhanced_orb_evaluation ${ENHANCED_ORB_GTEST_MAIN})
+target_compile_definitions(test_camera_motion PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}"
+  ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}")

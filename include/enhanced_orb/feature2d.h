@@ -12,6 +12,7 @@
 
 #include <opencv2/features2d.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/params.h"
 
@@ -40,7 +41,11 @@ public:
   // 8-bit gray or BGR/BGRA input (anything else: cv::Exception, as cv::ORB). Without provided
   // keypoints: OrbExtractor::extract(), no keypoint where the 8-bit mask (empty, or the image's
   // size) is 0. With them (compute()): OrbExtractor::describe(), the keypoints that cannot be
-  // described removed.
+  // described removed. The images detected on are taken as one camera's frames in order: with
+  // camera_motion auto (the default) they decide whether the camera is judged moving
+  // (CameraMotion). For images that are not one stream, call clear() before each, or use
+  // camera_motion still.
+
   void detectAndCompute(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
                         cv::OutputArray descriptors, bool useProvidedKeypoints = false) override;
 
@@ -49,6 +54,8 @@ public:
   int defaultNorm() const override { return cv::NORM_HAMMING; }
   cv::String getDefaultName() const override { return "Feature2D.EnhancedORB"; }
   bool empty() const override { return false; }
+  // Forgets the stream of images seen so far: the next image is judged as a new stream's first.
+  void clear() override;
 
   // The parameters by their ROS names (as setParam() reads them); read() is readParams() starting
   // from the current ones.
@@ -59,6 +66,7 @@ private:
   explicit ORB(const Params& params) : extractor_(params) {}
 
   OrbExtractor extractor_;
+  CameraMotion motion_;
   Extraction result_;  // reused from call to call
 };
 

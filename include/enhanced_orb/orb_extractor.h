@@ -53,6 +53,7 @@ struct Extraction {
   bool poor_quality = false;
   bool inverted = false;
   double noise = 0.0;            // estimateNoise() of `image` where noise_floor uses it, else 0
+  bool camera_moving = false;    // the frame got the moving camera's selection (Params::movingSelection)
   std::vector<cv::Mat> pyramid;  // with ExtractOptions::keep_pyramid: each level's image (level 0 = image)
   StageTimings timings;
 };
@@ -64,6 +65,10 @@ struct ExtractOptions {
   cv::Mat mask;
   // Copy each pyramid level into Extraction::pyramid (into its own buffers, reused from call to call).
   bool keep_pyramid = false;
+  // With camera_motion auto: the frame's camera is judged moving (by a CameraMotion fed the
+  // stream's frames in order), and the frame gets the moving camera's selection. A single image,
+  // or the first frame of a stream, is judged still.
+  bool camera_moving = false;
 };
 
 class OrbExtractor {
@@ -72,6 +77,9 @@ public:
   explicit OrbExtractor(const Params& params = Params());
 
   const Params& params() const { return params_; }
+  // Whether extract() reads ExtractOptions::camera_moving (camera_motion auto), so that a caller
+  // feeding a stream knows to judge its frames.
+  bool judgesMotion() const { return params_.orb.camera_motion == MotionMode::kAuto; }
 
   // Extracts from an 8-bit gray image. An empty image gives an empty result.
   // Throws std::invalid_argument when `gray` is not CV_8UC1.
@@ -106,6 +114,7 @@ private:
   void release(std::unique_ptr<Workspace> ws) const;
 
   Params params_;
+  Params moving_params_;  // params_.forFrame(true)
   struct Pool;
   std::shared_ptr<Pool> pool_;
 };

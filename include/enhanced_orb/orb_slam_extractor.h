@@ -8,7 +8,9 @@
 // nfeatures, scaleFactor and nlevels are `max_features`, `scale_factor` and `n_levels`. The other
 // parameters come from `base`; the five-argument constructor takes them from the YAML file named by
 // the environment variable ENHANCED_ORB_CONFIG (readParamsFile(): a `preset` and/or parameters by
-// their ROS names, e.g. the package's config/motion.yaml) or, without it, the default mode.
+// their ROS names, e.g. the package's config/motion.yaml) or, without it, the default mode. Each
+// extractor takes one camera's frames in order (as ORB-SLAM calls it), so camera_motion auto
+// judges from them whether the camera moves.
 //
 // This header needs only C++11 and OpenCV (ORB-SLAM builds as C++11 or C++14); the rest of the
 // package is C++17 behind it.

@@ -35,8 +35,16 @@ enum class Preset {
   kDefault,   // the default mode (the member initialisers)
   kPaper,     // Dai & Wu's method as published (ALGORITHM.md)
   kStretch,   // the default mode with the raw tone order: well-exposed scenes whose light changes locally
-  kMotion,    // the default mode with its candidates chosen by the frame's noise: a moving camera
+  kMotion,    // the default mode with camera_motion moving: the moving camera's selection from the first frame
   kBaseline,  // the paper's original ORB: no enhancement, FAST 20 everywhere (Params::baseline())
+};
+
+// Which selection a frame gets: the still camera's (threshold_scale, noise_floor) or the moving
+// camera's (moving_threshold_scale, moving_noise_floor).
+enum class MotionMode {
+  kAuto,    // judged per stream from the frames in order (camera_motion.h); single images: still
+  kStill,   // always the still camera's
+  kMoving,  // always the moving camera's
 };
 
 // How the FAST threshold of each grid cell is chosen.
@@ -67,7 +75,10 @@ struct EnhanceParams {
 struct ThresholdParams {
   int grid_size = 5;             // m: the image is cut into m x m cells, [1, 32]
   double threshold_scale = 0.3;  // a, eq 33, [0, 2]
-  int c_min = 7;                 // C_min, eq 34, [1, 200]
+  // a while the camera moves (OrbParams::camera_motion): every cell at c_min, so that corners are
+  // found over the whole view. [0, 2]
+  double moving_threshold_scale = 0.0;
+  int c_min = 7;  // C_min, eq 34, [1, 200]
 };
 
 // Section II and IV: the ORB pipeline around the threshold.
@@ -80,9 +91,14 @@ struct OrbParams {
   double candidate_ratio = 1.5;
   // > 0: at a budget, a level's spread selection draws from its corners whose FAST score is at
   // least noise_floor x the frame's noise (estimateNoise() of the image the corners are found on),
-  // and at least from its budget's strongest; candidate_ratio is then not used. 0: off. With
-  // threshold_scale 0, the setting for relative pose on a moving camera (docs/RESULTS.md). [0, 50]
+  // and at least from its budget's strongest; candidate_ratio is then not used. 0: off. [0, 50]
   double noise_floor = 0.0;
+  // noise_floor while the camera moves: the budget spread over every corner that stands out of the
+  // noise, for relative pose and tracking (docs/RESULTS.md, "Real camera motion"). [0, 50]
+  double moving_noise_floor = 8.0;
+  // Which of the two selections a frame gets; auto judges from a stream's frames whether its
+  // camera moves (CameraMotion, ExtractOptions::camera_moving).
+  MotionMode camera_motion = MotionMode::kAuto;
   int n_levels = 8;           // pyramid levels, [1, 16]
   double scale_factor = 1.2;  // pyramid scale between levels, [1.01, 2]
   // Threads one extraction's pyramid levels use, through cv::parallel_for_ (OpenCV's pool,
@@ -106,11 +122,17 @@ struct Params {
   // only stretched linearly and each level keeps its strongest corners, so the ranking is the
   // camera's own. For well-exposed scenes whose light changes inside the frame (sun and shadow).
   static Params stretch();
-  // The default mode with noise_floor 8 and threshold_scale 0: each level's budget spread over its
-  // corners that stand out of the frame's noise, every cell at c_min. For a moving camera (relative
-  // pose, tracking); docs/RESULTS.md, "Real camera motion".
+  // The default mode with camera_motion moving: every frame gets the moving camera's selection,
+  // from the first one on.
   static Params motion();
   static Params preset(Preset preset);
+
+  // Whether a frame gets the moving camera's selection: camera_motion moving, or auto and the
+  // frame's camera judged moving.
+  bool movingSelection(bool judged_moving) const;
+  // The parameters a frame is extracted with: these, with threshold_scale and noise_floor the
+  // moving_ ones where movingSelection(judged_moving).
+  Params forFrame(bool judged_moving) const;
 };
 
 // Range checks. Each returns one message per offending value, naming the parameter, the value and
@@ -163,6 +185,8 @@ const char* toString(GammaMode mode);
 const char* toString(ThresholdMode mode);
 const char* toString(ToneCurve curve);
 const char* toString(Preset preset);
+const char* toString(MotionMode mode);
+bool parseMotionMode(const std::string& name, MotionMode& out);  // "auto", "still", "moving"
 bool parseGammaMode(const std::string& name, GammaMode& out);
 bool parseThresholdMode(const std::string& name, ThresholdMode& out);
 bool parseToneCurve(const std::string& name, ToneCurve& out);  // "gamma", "equalize", "stretch"
@@ -172,6 +196,7 @@ std::string toneCurveNames();
 std::string presetNames();
 std::string gammaModeNames();
 std::string thresholdModeNames();
+std::string motionModeNames();
 
 }  // namespace enhanced_orb
 

@@ -156,6 +156,11 @@ int cellThreshold(const cv::Mat& cell, const ThresholdParams& params) {
 void cellThresholds(const cv::Mat& image, const ThresholdParams& params, ThresholdWorkspace& ws, cv::Mat& thresholds) {
   const int grid = params.grid_size;
   thresholds.create(grid, grid, CV_32S);
+  if (params.threshold_scale == 0.0) {
+    // Eq 33 gives 0 in every cell and eq 34 c_min: no histogram or Otsu threshold is needed.
+    thresholds.setTo(cv::Scalar(std::min(255, params.c_min)));
+    return;
+  }
   cellHistograms(image, grid, ws);
   int otsu[1024];
   otsuThresholds(ws.histograms.data(), grid * grid, otsu);

@@ -126,11 +126,16 @@ void ORB::detectAndCompute(cv::InputArray image, cv::InputArray mask, std::vecto
   }
   ExtractOptions options;
   options.mask = mask_mat;
+  options.camera_moving = extractor_.judgesMotion() && motion_.update(gray);
   extractor_.extract(gray, options, result_);
   keypoints = result_.keypoints;
   if (descriptors.needed()) {
     result_.descriptors.copyTo(descriptors);
   }
+}
+
+void ORB::clear() {
+  motion_.reset();
 }
 
 void ORB::write(cv::FileStorage& fs) const {

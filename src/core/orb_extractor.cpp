@@ -39,7 +39,8 @@ struct OrbExtractor::Pool {
   std::vector<std::unique_ptr<Workspace>> free;
 };
 
-OrbExtractor::OrbExtractor(const Params& params) : params_(params), pool_(std::make_shared<Pool>()) {
+OrbExtractor::OrbExtractor(const Params& params)
+    : params_(params), moving_params_(params.forFrame(true)), pool_(std::make_shared<Pool>()) {
   const std::vector<std::string> problems = validate(params_);
   if (!problems.empty()) {
     throw std::invalid_argument(joinMessages(problems));
@@ -270,7 +271,9 @@ std::unique_ptr<OrbExtractor::Workspace, std::function<void(OrbExtractor::Worksp
 
 void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const {
   checkInput(gray, options.mask);
-  const OrbParams& orb = params_.orb;
+  out.camera_moving = params_.movingSelection(options.camera_moving);
+  const Params& params = out.camera_moving ? moving_params_ : params_;
+  const OrbParams& orb = params.orb;
   out.timings = StageTimings();
   out.keypoints.clear();
   const auto ws = lease();
@@ -279,7 +282,7 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
   out.timings.enhance_ms = clock.lap();
   Stopwatch wall;
   ws->pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
-  detectLevels(params_, options.mask, *ws, out);
+  detectLevels(params, options.mask, *ws, out);
   clock.lap();
   out.noise = orb.max_features > 0 && orb.noise_floor > 0.0 ? estimateNoise(out.image) : 0.0;
   if (orb.max_features > 0) {

@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/feature2d.h"
 #include "enhanced_orb/orb_extractor.h"
 
@@ -32,7 +33,8 @@ Params withOrbSlamSettings(Params params, int nfeatures, float scaleFactor, int 
 struct OrbSlamExtractor::State {
   OrbExtractor extractor;
   Extraction result;
-  cv::Mat ordered;  // the descriptors in ORB-SLAM3's order, reused frame after frame
+  cv::Mat ordered;      // the descriptors in ORB-SLAM3's order, reused frame after frame
+  CameraMotion motion;  // ORB-SLAM calls each extractor with one camera's frames in order
 };
 
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
@@ -41,7 +43,7 @@ OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST,
                                    const Params& base)
     : state_(new State{OrbExtractor(withOrbSlamSettings(base, nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)),
-                       Extraction(), cv::Mat()}),
+                       Extraction(), cv::Mat(), CameraMotion()}),
       scale_factor_(scaleFactor) {
   const OrbParams& orb = state_->extractor.params().orb;
   for (int level = 0; level < orb.n_levels; ++level) {
@@ -77,6 +79,7 @@ int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std:
   ExtractOptions options;
   options.mask = mask.getMat();
   options.keep_pyramid = true;
+  options.camera_moving = state_->extractor.judgesMotion() && state_->motion.update(gray);
   Extraction& result = state_->result;
   state_->extractor.extract(gray, options, result);
   std::swap(mvImagePyramid, result.pyramid);  // the previous levels' buffers are reused next time

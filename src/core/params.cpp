@@ -28,6 +28,7 @@ Params Params::paper() {
   p.enhance.blur_ksize = 5;
   p.orb.max_features = 0;
   p.orb.candidate_ratio = 0.0;
+  p.orb.camera_motion = MotionMode::kStill;
   return p;
 }
 
@@ -36,13 +37,26 @@ Params Params::stretch() {
   p.enhance.tone_curve = ToneCurve::kStretch;
   p.enhance.tau = 0.05;
   p.orb.candidate_ratio = 1.0;
+  p.orb.camera_motion = MotionMode::kStill;
   return p;
 }
 
 Params Params::motion() {
   Params p;
-  p.threshold.threshold_scale = 0.0;
-  p.orb.noise_floor = 8.0;
+  p.orb.camera_motion = MotionMode::kMoving;
+  return p;
+}
+
+bool Params::movingSelection(bool judged_moving) const {
+  return orb.camera_motion == MotionMode::kMoving || (orb.camera_motion == MotionMode::kAuto && judged_moving);
+}
+
+Params Params::forFrame(bool judged_moving) const {
+  Params p = *this;
+  if (movingSelection(judged_moving)) {
+    p.threshold.threshold_scale = threshold.moving_threshold_scale;
+    p.orb.noise_floor = orb.moving_noise_floor;
+  }
   return p;
 }
 
@@ -144,9 +158,38 @@ const char* fixedOnly(const Params& p) {
 const char* budgetOnly(const Params& p) {
   return p.orb.max_features == 0 ? "only used with a budget (max_features > 0)" : nullptr;
 }
+const char* stillUnused(const Params& p) {
+  return p.orb.camera_motion == MotionMode::kMoving ? "not used when camera_motion is moving (the moving_ one is)"
+                                                    : nullptr;
+}
+const char* movingUnused(const Params& p) {
+  return p.orb.camera_motion == MotionMode::kStill ? "not used when camera_motion is still" : nullptr;
+}
+const char* thresholdScaleUnused(const Params& p) {
+  const char* why = adaptiveOnly(p);
+  return why ? why : stillUnused(p);
+}
+const char* movingThresholdScaleUnused(const Params& p) {
+  const char* why = adaptiveOnly(p);
+  return why ? why : movingUnused(p);
+}
+const char* noiseFloorUnused(const Params& p) {
+  const char* why = budgetOnly(p);
+  return why ? why : stillUnused(p);
+}
+const char* movingNoiseFloorUnused(const Params& p) {
+  const char* why = budgetOnly(p);
+  return why ? why : movingUnused(p);
+}
 const char* candidateRatioUnused(const Params& p) {
   const char* why = budgetOnly(p);
-  return why ? why : p.orb.noise_floor > 0.0 ? "not used when noise_floor > 0" : nullptr;
+  if (why) {
+    return why;
+  }
+  // Used by each selection in use whose noise floor is 0.
+  const bool still = p.orb.camera_motion != MotionMode::kMoving && p.orb.noise_floor == 0.0;
+  const bool moving = p.orb.camera_motion != MotionMode::kStill && p.orb.moving_noise_floor == 0.0;
+  return still || moving ? nullptr : "not used when the noise floor in use is > 0";
 }
 
 template <typename T>
@@ -232,7 +275,11 @@ const std::vector<Field>& fields() {
           "m: the image is cut into m x m cells, each with its own FAST threshold"),
       number(
           "threshold_scale", Group::kThreshold, [](Params& p) -> double& { return p.threshold.threshold_scale; }, 0.0,
-          2.0, "a in C = a |I_mid - t| (eq 33)", adaptiveOnly),
+          2.0, "a in C = a |I_mid - t| (eq 33)", thresholdScaleUnused),
+      number(
+          "moving_threshold_scale", Group::kThreshold,
+          [](Params& p) -> double& { return p.threshold.moving_threshold_scale; }, 0.0, 2.0,
+          "threshold_scale while the camera moves (camera_motion)", movingThresholdScaleUnused),
       number(
           "c_min", Group::kThreshold, [](Params& p) -> int& { return p.threshold.c_min; }, 1, 200,
           "C_min (eq 34): the least FAST threshold of a cell", adaptiveOnly),
@@ -252,7 +299,14 @@ const std::vector<Field>& fields() {
       number(
           "noise_floor", Group::kOrb, [](Params& p) -> double& { return p.orb.noise_floor; }, 0.0, 50.0,
           "> 0: a level spreads its budget over its corners scoring noise_floor x the frame's noise or more",
-          budgetOnly),
+          noiseFloorUnused),
+      number(
+          "moving_noise_floor", Group::kOrb, [](Params& p) -> double& { return p.orb.moving_noise_floor; }, 0.0, 50.0,
+          "noise_floor while the camera moves (camera_motion)", movingNoiseFloorUnused),
+      named(
+          "camera_motion", Group::kOrb, [](Params& p) -> MotionMode& { return p.orb.camera_motion; }, parseMotionMode,
+          "auto|still|moving",
+          "which selection a frame gets: judged from the stream's frames, the still camera's, the moving camera's"),
       number(
           "n_levels", Group::kOrb, [](Params& p) -> int& { return p.orb.n_levels; }, 1, 16, "pyramid levels"),
       number(
@@ -438,6 +492,8 @@ constexpr Named<Preset> kPresets[] = {{Preset::kDefault, "default"},
                                       {Preset::kBaseline, "baseline"}};
 constexpr Named<GammaMode> kGammaModes[] = {
     {GammaMode::kAuto, "auto"}, {GammaMode::kAlways, "always"}, {GammaMode::kNever, "never"}};
+constexpr Named<MotionMode> kMotionModes[] = {
+    {MotionMode::kAuto, "auto"}, {MotionMode::kStill, "still"}, {MotionMode::kMoving, "moving"}};
 constexpr Named<ThresholdMode> kThresholdModes[] = {{ThresholdMode::kAdaptive, "adaptive"},
                                                     {ThresholdMode::kFixed, "fixed"}};
 
@@ -489,6 +545,18 @@ const char* toString(ToneCurve curve) {
 
 const char* toString(Preset preset) {
   return nameOf(preset, kPresets);
+}
+
+const char* toString(MotionMode mode) {
+  return nameOf(mode, kMotionModes);
+}
+
+bool parseMotionMode(const std::string& name, MotionMode& out) {
+  return parseName(name, kMotionModes, out);
+}
+
+std::string motionModeNames() {
+  return nameList(kMotionModes);
 }
 
 bool parseToneCurve(const std::string& name, ToneCurve& out) {

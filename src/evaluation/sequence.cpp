@@ -10,6 +10,7 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/evaluation/degrade.h"
 
 namespace enhanced_orb {
@@ -262,6 +263,15 @@ cv::Mat LightCondition::apply(const cv::Mat& gray, int frame, int n_frames, std:
 
 std::vector<LightCondition> lightConditions() {
   return {{"unchanged"}, {"dim"}, {"dark"}, {"dusk"}, {"lights_out"}, {"flicker"}, {"lamp"}, {"dip"}};
+}
+
+std::vector<char> judgeMotion(const std::vector<cv::Mat>& frames) {
+  CameraMotion motion;
+  std::vector<char> moving(frames.size());
+  for (size_t i = 0; i < frames.size(); ++i) {
+    moving[i] = motion.update(frames[i]) ? 1 : 0;
+  }
+  return moving;
 }
 
 RelativePose sequencePose(const Sequence& sequence, int i, int j) {

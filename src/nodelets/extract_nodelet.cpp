@@ -13,6 +13,7 @@
 
 #include "enhanced_orb/EnhanceStatus.h"
 #include "enhanced_orb/ExtractConfig.h"
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/draw.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
@@ -66,7 +67,10 @@ private:
       extractor = extractor_;
       draw = draw_;
     }
-    const Extraction result = extractor->extract(gray);
+    ExtractOptions options;
+    options.camera_moving = judgeMotion(msg->header.stamp, gray, extractor->judgesMotion());
+    Extraction result;
+    extractor->extract(gray, options, result);
     if (keypoints_pub_.getNumSubscribers() > 0) {
       keypoints_pub_.publish(toMessage(result, msg->header, extractor->params()));
     }
@@ -92,11 +96,36 @@ private:
       } else {
         caption << " | " << std::setprecision(1);
       }
-      caption << result.timings.extractMs() << " ms | " << toString(extractor->params().orb.threshold_mode);
+      caption << result.timings.extractMs() << " ms | " << toString(extractor->params().orb.threshold_mode) << " | "
+              << (result.camera_moving ? "moving" : "still");
       drawAnnotated(result.image, result.keypoints, result.cell_thresholds, caption.str(), draw,
                     cv::Mat(gray.rows, gray.cols, CV_8UC3, out->data.data(), out->step));
       annotated_pub_.publish(out);
     }
+  }
+
+  // Whether the camera is judged moving at this image (camera_motion auto: `judge`), the images
+  // taken in order as one stream. A stamp before the last one (a bag played again) starts a new
+  // stream; each change of the judgment is logged.
+  bool judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge) {
+    std::lock_guard<std::mutex> lock(motion_mutex_);
+    if (!judge) {
+      motion_.reset();
+      return false;
+    }
+    if (stamp < last_stamp_) {
+      NODELET_INFO("image stamps went back (%.3f s after %.3f s): the camera's motion is judged anew", stamp.toSec(),
+                   last_stamp_.toSec());
+      motion_.reset();
+    }
+    last_stamp_ = stamp;
+    const bool was_moving = motion_.moving();
+    const bool moving = motion_.update(gray);
+    if (moving != was_moving) {
+      NODELET_INFO("camera judged %s (shift %.1f px): the %s camera's selection from now on",
+                   moving ? "moving" : "still", motion_.shift(), moving ? "moving" : "still");
+    }
+    return moving;
   }
 
   // The enhancement's status of the image with this stamp, when EnhanceNodelet sent one.
@@ -113,6 +142,9 @@ private:
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
   std::mutex params_mutex_;
+  std::mutex motion_mutex_;
+  CameraMotion motion_;
+  ros::Time last_stamp_;
   std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>(withoutEnhancement());
   DrawOptions draw_;
 };

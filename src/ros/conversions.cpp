@@ -128,6 +128,7 @@ KeypointArrayPtr toMessage(const Extraction& extraction, const std_msgs::Header&
   const cv::Mat& t = extraction.cell_thresholds;
   msg->grid_size = static_cast<std::uint32_t>(t.rows);
   msg->cell_thresholds.assign(t.begin<int>(), t.end<int>());
+  msg->camera_moving = extraction.camera_moving;
   msg->threshold_mode = toString(params.orb.threshold_mode);
   msg->n_levels = static_cast<std::uint32_t>(extraction.level_thresholds.size());
   msg->scale_factor = static_cast<float>(params.orb.scale_factor);

@@ -141,7 +141,9 @@ struct Runner {
   std::string label;
   int budget;
   std::vector<ev::Method> per_worker;
-  ev::Features run(int worker, const cv::Mat& gray) const { return per_worker[worker].run(gray); }
+  ev::Features run(int worker, const cv::Mat& gray, bool camera_moving = false) const {
+    return per_worker[worker].run(gray, camera_moving);
+  }
 };
 
 std::vector<Runner> runners(const Options& o) {
@@ -562,13 +564,15 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
     const ev::LightCondition& light = conditions[c];
     std::vector<cv::Mat> dl, dr;
     degradeSequence(frames, light, o.threads, dl, dr);
+    // Each camera is a stream: its frames judged in order, as a nodelet or an adapter judges them.
+    const std::vector<char> moving_l = ev::judgeMotion(dl), moving_r = ev::judgeMotion(dr);
     for (size_t m = 0; m < all.size(); ++m) {
       const Runner& method = all[m];
       std::vector<ev::Features> fl(n), fr(stereo ? n : 0);
       parallelFor(n, o.threads, [&](int w, int i) {
-        fl[i] = method.run(w, dl[i]);
+        fl[i] = method.run(w, dl[i], moving_l[i]);
         if (stereo) {
-          fr[i] = method.run(w, dr[i]);
+          fr[i] = method.run(w, dr[i], moving_r[i]);
         }
       });
       const std::string prefix = seq.name + "," + light.name + "," + method.label + "," + std::to_string(method.budget);

@@ -14,6 +14,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/draw.h"
 #include "enhanced_orb/evaluation/files.h"
 #include "enhanced_orb/orb_extractor.h"
@@ -29,7 +30,9 @@ const char* const kUsage = R"(usage: enhanced_orb_extract [options] IMAGE... --o
 Runs the enhanced ORB extractor on each IMAGE (any format OpenCV reads; colour is turned to gray)
 and writes DIR/<stem>.yml (cv::FileStorage) with keypoints (N x 6 float: x, y, size, angle,
 response, octave), descriptors (N x 32 uint8), thresholds (grid x grid int, level 0), lambda,
-poor_quality, inverted, enhance_ms and extract_ms.
+poor_quality, inverted, camera_moving, enhance_ms and extract_ms. The IMAGEs are taken as one
+camera's frames in the order given: with --camera-motion auto (the default) they decide whether the
+camera is judged moving; for images that are not one camera's frames, give --camera-motion still.
 
 options:
   --output DIR           where to write (created if missing; required)
@@ -168,6 +171,7 @@ void writeResult(const fs::path& path, const Extraction& r) {
   fs << "lambda" << r.lambda;
   fs << "poor_quality" << static_cast<int>(r.poor_quality);
   fs << "inverted" << static_cast<int>(r.inverted);
+  fs << "camera_moving" << static_cast<int>(r.camera_moving);
   fs << "enhance_ms" << r.timings.enhance_ms;
   fs << "extract_ms" << r.timings.extractMs();
   fs.release();
@@ -267,6 +271,8 @@ int main(int argc, char** argv) {
     // OpenCV's pool as large as the extraction asks, so that one thread is one thread throughout.
     cv::setNumThreads(std::max(opt.params.orb.threads, opt.params.enhance.threads));
     const enhanced_orb::OrbExtractor extractor(opt.params);
+    enhanced_orb::CameraMotion motion;  // the images as one camera's frames, in order
+    enhanced_orb::ExtractOptions options;
     Extraction r;  // buffers reused from image to image
     const cv::Ptr<cv::ORB> opencv =
         cv::ORB::create(opt.params.orb.max_features > 0 ? opt.params.orb.max_features : 1000000, 1.2f, 8);
@@ -282,7 +288,8 @@ int main(int argc, char** argv) {
         ++failures;
         continue;
       }
-      extractor.extract(gray, r);
+      options.camera_moving = extractor.judgesMotion() && motion.update(gray);
+      extractor.extract(gray, options, r);
       writeOutputs(opt, stems[i].string(), r);
       std::cout << path << ": " << r.keypoints.size() << " keypoints, enhance " << r.timings.enhance_ms
                 << " ms, extract " << r.timings.extractMs() << " ms";

@@ -269,8 +269,16 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   const std::vector<std::string> flat = inactiveParameters(never);
   EXPECT_TRUE(has(flat, "tone_curve") && has(flat, "alpha") && has(flat, "tau") && has(flat, "beta"));
   EXPECT_FALSE(has(flat, "sharpening"));
-  EXPECT_TRUE(has(inactiveParameters(Params::motion()), "candidate_ratio"));  // noise_floor decides
-  EXPECT_FALSE(has(inactiveParameters(Params::motion()), "noise_floor"));
+  // The moving camera's selection only: its noise floor decides, the still camera's parameters rest.
+  const std::vector<std::string> motion = inactiveParameters(Params::motion());
+  EXPECT_TRUE(has(motion, "candidate_ratio") && has(motion, "noise_floor") && has(motion, "threshold_scale"));
+  EXPECT_FALSE(has(motion, "moving_noise_floor") || has(motion, "moving_threshold_scale"));
+  // The default judges the camera: both selections can run, and the still one reads candidate_ratio.
+  const std::vector<std::string> automatic = inactiveParameters(Params());
+  EXPECT_FALSE(has(automatic, "candidate_ratio") || has(automatic, "noise_floor") ||
+               has(automatic, "moving_noise_floor") || has(automatic, "moving_threshold_scale"));
+  const std::vector<std::string> still = inactiveParameters(Params::paper());
+  EXPECT_TRUE(has(still, "moving_threshold_scale") && !has(still, "threshold_scale"));
 }
 
 TEST(Params, StretchClipsLessThanHalfAtEachEnd) {
@@ -339,7 +347,8 @@ TEST(Params, NoiseFloorIsAParameterLikeTheOthers) {
     }
     return false;
   };
-  EXPECT_TRUE(inactive(p, "candidate_ratio: not used when noise_floor"));
+  p.orb.camera_motion = MotionMode::kStill;
+  EXPECT_TRUE(inactive(p, "candidate_ratio: not used when the noise floor in use"));
   p.orb.noise_floor = 51.0;
   ASSERT_EQ(validate(p).size(), 1u);
   EXPECT_NE(validate(p)[0].find("noise_floor"), std::string::npos);
@@ -350,24 +359,6 @@ TEST(Params, NoiseFloorIsAParameterLikeTheOthers) {
   EXPECT_TRUE(inactive(p, "noise_floor: only used with a budget"));
 }
 
-TEST(Params, MotionPresetIsTheDefaultModeWithTheNoiseFloor) {
-  const Params m = Params::preset(Preset::kMotion);
-  EXPECT_TRUE(validate(m).empty()) << joinMessages(validate(m));
-  EXPECT_DOUBLE_EQ(m.orb.noise_floor, 8.0);
-  EXPECT_DOUBLE_EQ(m.threshold.threshold_scale, 0.0);
-  Preset parsed = Preset::kDefault;
-  EXPECT_TRUE(parsePreset("motion", parsed));
-  EXPECT_EQ(parsed, Preset::kMotion);
-  Params d;
-  d.orb.noise_floor = m.orb.noise_floor;
-  d.threshold.threshold_scale = m.threshold.threshold_scale;
-  for (const char* name :
-       {"tone_curve", "alpha", "tau", "beta", "sharpening", "blur_ksize", "blur_sigma", "gamma_mode", "grid_size",
-        "c_min", "threshold_mode", "max_features", "candidate_ratio", "n_levels", "scale_factor"}) {
-    EXPECT_EQ(paramText(m, name), paramText(d, name)) << name;
-  }
-}
-
 // Every parameter by its name, as text: the same value whichever way it was reached.
 std::map<std::string, std::string> asText(const Params& p) {
   std::map<std::string, std::string> out;
@@ -375,6 +366,58 @@ std::map<std::string, std::string> asText(const Params& p) {
     out[name] = paramText(p, name).value_or("?");
   }
   return out;
+}
+
+TEST(Params, MotionPresetIsTheDefaultModeWithTheMovingSelection) {
+  const Params m = Params::preset(Preset::kMotion);
+  EXPECT_TRUE(validate(m).empty()) << joinMessages(validate(m));
+  EXPECT_EQ(m.orb.camera_motion, MotionMode::kMoving);
+  Preset parsed = Preset::kDefault;
+  EXPECT_TRUE(parsePreset("motion", parsed));
+  EXPECT_EQ(parsed, Preset::kMotion);
+  Params d;
+  d.orb.camera_motion = MotionMode::kMoving;
+  EXPECT_EQ(asText(m), asText(d));
+  // Every frame, judged or not, gets the moving selection: the noise floor and every cell at c_min.
+  for (bool judged : {false, true}) {
+    const Params frame = m.forFrame(judged);
+    EXPECT_DOUBLE_EQ(frame.orb.noise_floor, 8.0);
+    EXPECT_DOUBLE_EQ(frame.threshold.threshold_scale, 0.0);
+  }
+}
+
+TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
+  Params p;
+  p.threshold.moving_threshold_scale = 0.1;
+  p.orb.moving_noise_floor = 5.0;
+  // auto: the judgment decides.
+  EXPECT_FALSE(p.movingSelection(false));
+  EXPECT_TRUE(p.movingSelection(true));
+  EXPECT_DOUBLE_EQ(p.forFrame(false).threshold.threshold_scale, 0.3);
+  EXPECT_DOUBLE_EQ(p.forFrame(false).orb.noise_floor, 0.0);
+  EXPECT_DOUBLE_EQ(p.forFrame(true).threshold.threshold_scale, 0.1);
+  EXPECT_DOUBLE_EQ(p.forFrame(true).orb.noise_floor, 5.0);
+  // still and moving: the judgment is not read.
+  p.orb.camera_motion = MotionMode::kStill;
+  EXPECT_FALSE(p.movingSelection(true));
+  EXPECT_DOUBLE_EQ(p.forFrame(true).orb.noise_floor, 0.0);
+  p.orb.camera_motion = MotionMode::kMoving;
+  EXPECT_TRUE(p.movingSelection(false));
+  EXPECT_DOUBLE_EQ(p.forFrame(false).orb.noise_floor, 5.0);
+  // Everything else is the same in both selections.
+  Params moving = p.forFrame(true);
+  moving.threshold.threshold_scale = p.threshold.threshold_scale;
+  moving.orb.noise_floor = p.orb.noise_floor;
+  EXPECT_EQ(asText(moving), asText(p));
+  // By name, as the nodelets and tools set it.
+  EXPECT_EQ(setParam(p, "camera_motion", "auto"), "");
+  EXPECT_EQ(p.orb.camera_motion, MotionMode::kAuto);
+  EXPECT_EQ(setParam(p, "camera_motion", "walking"), "camera_motion 'walking' is not auto|still|moving");
+  EXPECT_EQ(p.orb.camera_motion, MotionMode::kAuto);
+  // The presets that are the paper's or keep the strongest corners never switch.
+  EXPECT_EQ(Params::paper().orb.camera_motion, MotionMode::kStill);
+  EXPECT_EQ(Params::baseline().orb.camera_motion, MotionMode::kStill);
+  EXPECT_EQ(Params::stretch().orb.camera_motion, MotionMode::kStill);
 }
 
 TEST(ParamTable, EveryParameterOnceWithTheDefaultModesValueAndItsRange) {

@@ -23,7 +23,11 @@ struct Features {
 struct Method {
   std::string name;
   int budget = 1000;  // 0: every corner
-  std::function<Features(const cv::Mat& gray)> run;
+  // Extracts from one frame. camera_moving: the frame's camera is judged moving (CameraMotion fed
+  // the stream's frames in order, judgeMotion()); only modes with camera_motion auto read it.
+  std::function<Features(const cv::Mat& gray, bool camera_moving)> extract;
+
+  Features run(const cv::Mat& gray, bool camera_moving = false) const { return extract(gray, camera_moving); }
 };
 
 // "default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (motion, stretch and

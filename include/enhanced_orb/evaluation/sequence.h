@@ -70,6 +70,10 @@ struct LightCondition {
 };
 std::vector<LightCondition> lightConditions();
 
+// Each frame's CameraMotion judgment (1: the camera judged moving), the frames fed in order as one
+// camera's stream: what a stream's extractor with camera_motion auto reads (Method::run).
+std::vector<char> judgeMotion(const std::vector<cv::Mat>& frames);
+
 // Relative pose from a monocular pair of a sequence: the ground truth of frame j relative to frame i.
 RelativePose sequencePose(const Sequence& sequence, int i, int j);
 
