@@ -165,21 +165,21 @@ const char* stillUnused(const Params& p) {
 const char* movingUnused(const Params& p) {
   return p.orb.camera_motion == MotionMode::kStill ? "not used when camera_motion is still" : nullptr;
 }
+// The first of two reasons that applies.
+const char* either(const char* first, const char* second) {
+  return first ? first : second;
+}
 const char* thresholdScaleUnused(const Params& p) {
-  const char* why = adaptiveOnly(p);
-  return why ? why : stillUnused(p);
+  return either(adaptiveOnly(p), stillUnused(p));
 }
 const char* movingThresholdScaleUnused(const Params& p) {
-  const char* why = adaptiveOnly(p);
-  return why ? why : movingUnused(p);
+  return either(adaptiveOnly(p), movingUnused(p));
 }
 const char* noiseFloorUnused(const Params& p) {
-  const char* why = budgetOnly(p);
-  return why ? why : stillUnused(p);
+  return either(budgetOnly(p), stillUnused(p));
 }
 const char* movingNoiseFloorUnused(const Params& p) {
-  const char* why = budgetOnly(p);
-  return why ? why : movingUnused(p);
+  return either(budgetOnly(p), movingUnused(p));
 }
 const char* candidateRatioUnused(const Params& p) {
   const char* why = budgetOnly(p);

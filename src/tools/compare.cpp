@@ -44,7 +44,10 @@ Compares the extractors at equal budgets (matching: mutual Hamming nearest neigh
   --sequence DIR     a moving sequence with ground-truth poses (EuRoC ASL folder, or KITTI odometry
                      folder with image_0, calib.txt, poses.txt) under light that changes frame by
                      frame: relative pose between frames t and t + gap (AUC at 5/10/20 degrees)
-                     and, with a second camera, stereo frame-to-frame tracking by PnP
+                     and, with a second camera, stereo frame-to-frame tracking by PnP. Each
+                     camera's frames are a stream, judged in order (camera_motion auto), as a
+                     nodelet or an adapter judges them; --lighting and --euroc compare single
+                     images (a stream's first frame: judged still)
   --paper            instead: the paper's experiments (ALGORITHM.md section 4: its original ORB,
                      its improved ORB = the paper preset, cv::ORB; budgets 0 = every corner and
                      1000) on the frames of --euroc DIR (pairs judged by its poses), --images DIR
@@ -56,7 +59,8 @@ options:
   --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv,
                      sequence_pose.csv, sequence_tracking.csv (default: results/compare)
   --budgets LIST     feature budgets (default 500,1000,2000)
-  --methods LIST     of default,stretch,paper,baseline,cv::ORB,CLAHE+cv::ORB (default: all)
+  --methods LIST     of default,motion,stretch,paper,baseline,cv::ORB,CLAHE+cv::ORB,ORB-SLAM
+                     (default: all)
   --set NAME=VALUE   a parameter of the default mode (repeatable; e.g. --set alpha=0.7)
   --label NAME       the default mode's name in the output (default: default)
   --degradations L   EuRoC degradations (default: all of none,lowlight,lowlight_gain,spotlight,

@@ -62,6 +62,8 @@ class PipelineConsistency(unittest.TestCase):
             self.assertTrue(all(t >= 7 for t in msg.cell_thresholds), msg.cell_thresholds)
             self.assertGreater(len(msg.keypoints), 0)
             self.assertLessEqual(len(msg.keypoints), BUDGET)
+        # The excerpt's camera is static: the default mode judges it still (camera_motion auto).
+        self.assertFalse(any(m.camera_moving for m in improved.values()), "a static camera judged moving")
         for msg in baseline.values():
             self.check_common(msg)
             self.assertEqual(msg.threshold_mode, "fixed")

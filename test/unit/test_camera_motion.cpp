@@ -46,32 +46,12 @@ const cv::Mat& scene() {
   return s;
 }
 
-// Every `stride`-th of the first `count` cam0 frames of a shared sequence, in order; empty when the
-// shared data is absent.
-std::vector<cv::Mat> framesOf(const std::string& dir, size_t count, size_t stride) {
-  std::vector<std::string> names;
-  const std::filesystem::path data = dir + "/mav0/cam0/data";
-  if (std::filesystem::is_directory(data)) {
-    for (const auto& entry : std::filesystem::directory_iterator(data)) {
-      if (entry.path().extension() == ".png") {
-        names.push_back(entry.path().string());
-      }
-    }
-  }
-  std::sort(names.begin(), names.end());
-  std::vector<cv::Mat> frames;
-  for (size_t i = 0; i < std::min(count, names.size()); i += stride) {
-    frames.push_back(cv::imread(names[i], cv::IMREAD_GRAYSCALE));
-  }
-  return frames;
-}
-
-#define REQUIRE_FRAMES(frames, dir)                                                              \
-  if ((frames).empty()) {                                                                        \
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {                                              \
-      FAIL() << "frames not found under " << (dir) << " (ENHANCED_ORB_REQUIRE_DATA is set)";     \
-    }                                                                                            \
-    GTEST_SKIP() << "frames not found under " << (dir) << " (../shared absent): skipped";        \
+#define REQUIRE_FRAMES(frames, dir)                                                          \
+  if ((frames).empty()) {                                                                    \
+    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {                                          \
+      FAIL() << "frames not found under " << (dir) << " (ENHANCED_ORB_REQUIRE_DATA is set)"; \
+    }                                                                                        \
+    GTEST_SKIP() << "frames not found under " << (dir) << " (../shared absent): skipped";    \
   }
 
 TEST(CameraMotion, MeasuresTheShiftOfTheView) {
@@ -158,9 +138,9 @@ TEST(CameraMotion, SharedFramesOfAStillAndAMovingCamera) {
   // is slow under an emulator: ENHANCED_ORB_IDENTITY_STRIDE (the aarch64 job) takes fewer.
   const char* stride_env = std::getenv("ENHANCED_ORB_IDENTITY_STRIDE");
   const size_t stride = stride_env && std::atoi(stride_env) > 1 ? static_cast<size_t>(std::atoi(stride_env)) : 1;
-  const std::vector<cv::Mat> still = framesOf(ENHANCED_ORB_EUROC_DIR, 95, 3 * stride);
+  const std::vector<cv::Mat> still = test::cam0Frames(ENHANCED_ORB_EUROC_DIR, 3 * stride);
   REQUIRE_FRAMES(still, ENHANCED_ORB_EUROC_DIR);
-  const std::vector<cv::Mat> moving = framesOf(ENHANCED_ORB_MOVING_DIR, std::max<size_t>(10, 45 / stride), 1);
+  const std::vector<cv::Mat> moving = test::cam0Frames(ENHANCED_ORB_MOVING_DIR, 1, std::max<size_t>(10, 45 / stride));
   REQUIRE_FRAMES(moving, ENHANCED_ORB_MOVING_DIR);
   const int n_moving = static_cast<int>(moving.size());
   const OrbExtractor enhancing;
@@ -199,7 +179,8 @@ TEST(CameraMotion, ExtractorsFollowTheJudgment) {
   EXPECT_EQ(cv::norm(a.descriptors, m.descriptors, cv::NORM_INF), 0.0);
   const Extraction s = automatic.extract(second);
   EXPECT_FALSE(s.camera_moving);
-  const bool same = s.keypoints.size() == m.keypoints.size() && cv::norm(s.descriptors, m.descriptors, cv::NORM_INF) == 0.0;
+  const bool same =
+      s.keypoints.size() == m.keypoints.size() && cv::norm(s.descriptors, m.descriptors, cv::NORM_INF) == 0.0;
   EXPECT_FALSE(same) << "the two selections differ on this scene";
 
   // cv::Feature2D: the second image of a moving stream gets the moving selection; clear() starts anew.

@@ -30,21 +30,7 @@ namespace {
 
 // Every `stride`-th cam0 frame of the shared excerpt, sorted by name.
 std::vector<cv::Mat> eurocFrames(size_t stride) {
-  std::vector<std::string> names;
-  const std::filesystem::path dir = test::eurocDir() + "/mav0/cam0/data";
-  if (std::filesystem::is_directory(dir)) {
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      if (entry.path().extension() == ".png") {
-        names.push_back(entry.path().string());
-      }
-    }
-  }
-  std::sort(names.begin(), names.end());
-  std::vector<cv::Mat> frames;
-  for (size_t i = 0; i < names.size(); i += stride) {
-    frames.push_back(cv::imread(names[i], cv::IMREAD_GRAYSCALE));
-  }
-  return frames;
+  return test::cam0Frames(test::eurocDir(), stride);
 }
 
 // Every frame, or every ENHANCED_ORB_IDENTITY_STRIDE-th where that is set (the aarch64 job runs under

@@ -2,7 +2,10 @@
 #ifndef ENHANCED_ORB_TEST_IMAGES_H
 #define ENHANCED_ORB_TEST_IMAGES_H
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -36,6 +39,26 @@ inline std::string eurocDir() {
 // The first cam0 frame of the excerpt, or an empty Mat when ../shared is absent.
 inline cv::Mat eurocFrame(const std::string& name = "1403715273262142976.png") {
   return cv::imread(eurocDir() + "/mav0/cam0/data/" + name, cv::IMREAD_GRAYSCALE);
+}
+
+// Every `stride`-th of the first `count` cam0 frames of a EuRoC ASL folder, sorted by name; empty
+// when the folder is absent.
+inline std::vector<cv::Mat> cam0Frames(const std::string& dir, size_t stride = 1, size_t count = SIZE_MAX) {
+  std::vector<std::string> names;
+  const std::filesystem::path data = dir + "/mav0/cam0/data";
+  if (std::filesystem::is_directory(data)) {
+    for (const auto& entry : std::filesystem::directory_iterator(data)) {
+      if (entry.path().extension() == ".png") {
+        names.push_back(entry.path().string());
+      }
+    }
+  }
+  std::sort(names.begin(), names.end());
+  std::vector<cv::Mat> frames;
+  for (size_t i = 0; i < std::min(count, names.size()); i += std::max<size_t>(1, stride)) {
+    frames.push_back(cv::imread(names[i], cv::IMREAD_GRAYSCALE));
+  }
+  return frames;
 }
 
 }  // namespace test
