@@ -53,8 +53,8 @@ private:
   std::vector<cv::Mat> halves_;  // the frame halved once, twice, ... (the last is the thumbnail)
   cv::Mat reference_;            // the reference frame's spectrum (CV_32FC2); empty: no stream yet
   cv::Mat window_;               // Hann window of the thumbnail's size
-  cv::Mat padded_, spectrum_, cross_, correlation_;
-  int since_moved_ = kHoldFrames;  // frames since the camera last moved
+  cv::Mat thumb_, padded_, spectrum_, cross_, correlation_;  // padded_: the DFT's size, zero outside the thumbnail
+  int since_moved_ = kHoldFrames;                            // frames since the camera last moved
   bool moving_ = false;
   double shift_ = 0.0;
 };

@@ -51,8 +51,10 @@ the sensor model (shot noise, read noise, gain) and every method sees that frame
   ORB-SLAM's extractor (`ORB-SLAM`: FAST 20 in ~30 px cells falling back to 7, quadtree
   distribution, 8 levels of 1.2; written from its published description,
   `include/enhanced_orb/evaluation/orb_slam_style.h`). The `stretch` preset is shown beside them,
-  and the **`motion`** preset, for a moving camera (the default mode with `noise_floor: 8` and
-  `threshold_scale: 0`, README "Which mode to use").
+  and the **`motion`** preset (the default mode with `camera_motion: moving`: the moving camera's
+  selection from the first frame on, without the judgment).
+- Each camera's frames are one stream, judged in order as a nodelet or an adapter judges them
+  (`camera_motion: auto`), under each light condition.
 
 Light conditions: {conditions}.
 
@@ -70,33 +72,35 @@ devel/lib/enhanced_orb/enhanced_orb_compare --sequence ../shared/data/euroc/MH_0
 python3 scripts/report.py sequence /tmp/seq docs/RESULTS.md
 ```
 
-**Why the default mode loses in unchanged light, as far as measured** (1000 features): the loss is
-real, not noise (pairs from every frame: default 0.558, baseline 0.590), and it sits in the pairs one
-frame apart (AUC@10 at gap 1: default 0.40, `motion` 0.60, baseline 0.51). There the default mode
-has more RANSAC inliers than the baseline (286 against 242 per pair) but a larger median error (5.4
-degrees against 4.6): each level keeps only its 1.5 x budget strongest corners, which sit on few
-structures (on these frames its keypoints cover 39 % of the 32-pixel cells, `motion`'s 67 %, the
-baseline's 59 %), and a 2 cm baseline needs them spread. The tone curve is not the cause
-(`--set gamma_mode=never`: 0.547). Spreading wider wins pose and gives back correct matches
-between two views of one place: `motion` loses the EuRoC degraded-copy tests at 1000 (0.62-0.93x
-the best rival) and the unchanged frame pairs (0.91x) that the default mode wins; a larger
-candidate pool (`candidate_ratio` 3, with `threshold_scale` 0 or not) reaches 0.58 and falls to 0.33
-in the dark (default 0.40), `candidate_ratio` 2 stays at 0.56; coarser spreading cells, or
-suppressing keypoints that repeat across levels, lost more. Two more, in experiments not kept in the
-code (pairs from every third frame, unchanged / dark, against the default's 0.573 / 0.401): adding
-to each level's pool the strongest corner of every spreading cell that scores 8 x the frame's noise
-reaches 0.587 / 0.401, with cells 0.7 x as wide 0.613 / 0.401 (above the baseline), but keeps
-0.49-0.99 x the default's correct matches against the degraded EuRoC copies (`lowlight` 0.49x,
-`gradient` 0.64x, `dark` 0.75x: the clean frame's coverage corners are not found in its noisy or
-darkened copy), and on level 0 alone 0.581 and 0.87-0.98x; spreading the same pool over finer cells
-keeps the correct matches (0.98-1.03x) and loses pose (0.531-0.552); nor is it near-duplicate
-corners (dropping those within 3 px of a stronger one on the same level: 0.577, with 5 px 0.554),
-or corner positions (refined below the pixel by `cv::cornerSubPix`: 0.566-0.571). The settings above that come
-near the baseline's pose pay the same way on the EuRoC tables at 1000 (correct matches against the
-default's, over every degradation and pair): `candidate_ratio` 3 0.50-1.04x (`night` pairs 0.56x),
-every corner in cells twice as wide (0.600 / 0.335) 0.38-1.04x, `noise_floor` 8 0.39-1.10x.
-No single setting measured wins both, so the default stays the one for views of one
-place and `motion` is the one for a moving camera (and inside ORB-SLAM3, "Inside ORB-SLAM3" below).
+**How the default mode meets a moving camera.** It judges from each camera's frames, in order,
+whether the camera moves (`camera_motion: auto`, `include/enhanced_orb/camera_motion.h`): each
+frame's shift against a reference frame, by phase correlation of 94 x 60 thumbnails, whose whitened
+spectra a change of exposure, gain or noise does not move. Here the camera is judged moving from the
+second frame on under every light condition (a frame shifts about 12 px from the one before); on the
+static `V1_01_easy_micro` excerpt, darkened, flickering or switched off, no frame is (every shift
+under 2 px, against 3.8 px for "moved"; `test_camera_motion`). A moving camera gets the moving selection:
+every cell's FAST threshold at `c_min` and each level's budget spread over its corners that stand 8 x
+the frame's measured noise above it (`moving_threshold_scale: 0`, `moving_noise_floor: 8`). A still
+camera, and every single image (the same-place tables above), keeps each level's 1.5 x budget
+strongest corners, which wins there and loses here in good light: with that selection on these
+frames (`--set camera_motion=still`, which is the default mode before the judgment) the pose AUC@10
+at 1000 features in unchanged light is 0.573 against the original ORB's 0.589 (pairs from every frame:
+0.558 against 0.590), all of it in the pairs one frame apart (0.40 against 0.51; the moving selection
+0.60): more RANSAC inliers than the baseline (286 against 242 per pair) but a larger median error (5.4
+degrees against 4.6), its keypoints on few structures (39 % of the 32-pixel cells covered, the moving
+selection 67 %, the baseline 59 %) where a 2 cm baseline needs them spread. The moving selection in
+turn gives up correct matches between two views of one place (the EuRoC degraded-copy tests at 1000:
+0.62-0.93x the best rival; unchanged frame pairs 0.91x). No single selection measured won both
+(pairs from every third frame, unchanged / dark, against the still selection's 0.573 / 0.401, and the
+EuRoC tables at 1000 against its correct matches): `candidate_ratio` 3 0.576 / 0.331 and 0.50-1.04x;
+`noise_floor` 8 with the still thresholds 0.588 / 0.384 and 0.39-1.10x; every corner in spreading
+cells twice as wide 0.600 / 0.335 and 0.38-1.04x; each spreading cell's strongest corner above 8 x the
+noise added to the pool, in cells 0.7 x as wide, 0.613 / 0.401 and 0.49-1.03x (`lowlight` 0.49x);
+the pool spread over finer cells 0.531-0.552 and 0.98-1.03x; corners within 3 px of a stronger one
+dropped 0.577, corners refined by `cv::cornerSubPix` 0.566-0.571, the tone curve off
+(`gamma_mode: never`) 0.547. Hence the judgment. What it does not know: relocalisation while moving
+gets the moving selection, with its fewer correct matches against a darkened or noisy view; images
+that are not one camera's frames in order need `camera_motion: still`.
 """
 
 

@@ -28,12 +28,10 @@ void CameraMotion::spectrumOf(const cv::Mat& gray, cv::Mat& spectrum) {
                0, 0, cv::INTER_AREA);
     level = half;
   }
-  level.convertTo(padded_, CV_32F);
-  padded_ -= cv::mean(padded_)[0];
-  cv::multiply(padded_, window_, padded_);
-  const cv::Size dft(cv::getOptimalDFTSize(padded_.cols), cv::getOptimalDFTSize(padded_.rows));
-  cv::copyMakeBorder(padded_, padded_, 0, dft.height - padded_.rows, 0, dft.width - padded_.cols, cv::BORDER_CONSTANT,
-                     cv::Scalar(0));
+  level.convertTo(thumb_, CV_32F);
+  thumb_ -= cv::mean(thumb_)[0];
+  cv::Mat windowed = padded_(cv::Rect(0, 0, thumb_.cols, thumb_.rows));  // the rest of padded_ stays 0
+  cv::multiply(thumb_, window_, windowed);
   cv::dft(padded_, spectrum, cv::DFT_COMPLEX_OUTPUT);
 }
 
@@ -88,6 +86,8 @@ bool CameraMotion::update(const cv::Mat& gray) {
     halves_.resize(halvings);
     if (thumbnail_.width >= kMinThumbnail && thumbnail_.height >= kMinThumbnail) {
       cv::createHanningWindow(window_, thumbnail_, CV_32F);
+      padded_ =
+          cv::Mat::zeros(cv::getOptimalDFTSize(thumbnail_.height), cv::getOptimalDFTSize(thumbnail_.width), CV_32F);
     }
   }
   if (thumbnail_.width < kMinThumbnail || thumbnail_.height < kMinThumbnail) {
