@@ -36,7 +36,7 @@ public:
   // another size than the last starts a new stream. The first frame of a stream is judged still.
   bool update(const cv::Mat& gray);
 
-  bool moving() const { return moving_; }
+  bool moving() const { return since_moved_ < kHoldFrames; }
   // The last judged frame's shift from the reference frame, in pixels of the frame (0 for the first).
   double shift() const { return shift_; }
 
@@ -55,7 +55,6 @@ private:
   cv::Mat window_;               // Hann window of the thumbnail's size
   cv::Mat thumb_, padded_, spectrum_, cross_, correlation_;  // padded_: the DFT's size, zero outside the thumbnail
   int since_moved_ = kHoldFrames;                            // frames since the camera last moved
-  bool moving_ = false;
   double shift_ = 0.0;
 };
 

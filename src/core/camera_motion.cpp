@@ -15,7 +15,6 @@ namespace enhanced_orb {
 void CameraMotion::reset() {
   reference_.release();
   since_moved_ = kHoldFrames;
-  moving_ = false;
   shift_ = 0.0;
 }
 
@@ -71,7 +70,7 @@ double CameraMotion::shiftTo(const cv::Mat& spectrum) {
 
 bool CameraMotion::update(const cv::Mat& gray) {
   if (gray.empty() || gray.type() != CV_8UC1) {
-    return moving_;
+    return moving();
   }
   if (gray.size() != frame_size_) {
     reset();
@@ -91,12 +90,12 @@ bool CameraMotion::update(const cv::Mat& gray) {
     }
   }
   if (thumbnail_.width < kMinThumbnail || thumbnail_.height < kMinThumbnail) {
-    return moving_;  // too small to judge: still
+    return moving();  // too small to judge: still
   }
   if (reference_.empty()) {
     spectrumOf(gray, reference_);
     shift_ = 0.0;
-    return moving_;
+    return moving();
   }
   spectrumOf(gray, spectrum_);
   shift_ = shiftTo(spectrum_) * (1 << halves_.size());
@@ -106,8 +105,7 @@ bool CameraMotion::update(const cv::Mat& gray) {
   } else if (since_moved_ < kHoldFrames) {
     ++since_moved_;
   }
-  moving_ = since_moved_ < kHoldFrames;
-  return moving_;
+  return moving();
 }
 
 }  // namespace enhanced_orb
