@@ -12,7 +12,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 PACKAGES=(
   # build
-  build-essential cmake catkin libopencv-dev libgtest-dev libbenchmark-dev
+  build-essential cmake catkin libopencv-dev libgtest-dev libbenchmark-dev pybind11-dev python3-dev
   libroscpp-dev libnodeletlib-dev libnodelet-dev libimage-transport-dev libcv-bridge-dev librosbag-dev libmessage-filters-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure libdiagnostic-updater-dev
   ros-message-generation ros-message-runtime ros-std-msgs ros-sensor-msgs ros-diagnostic-msgs ros-cmake-modules
@@ -21,7 +21,7 @@ PACKAGES=(
   python3-rosservice python3-rosparam python3-rosbag python3-rostest librostest-dev
   image-transport-tools libnodeletlib-tools python3-rospy python3-sensor-msgs python3-std-msgs
   python3-numpy python3-opencv python3-cv-bridge python3-matplotlib python3-diagnostic-msgs
-  python3-tf2-msgs python3-geometry-msgs
+  python3-tf2-msgs python3-geometry-msgs python3-pytest
   # demo data, viewer, checks
   visp-images-data rviz xvfb xauth clang-format catkin-lint
   # fuzzing and sanitizers

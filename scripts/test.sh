@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, runs every test (gtests, rostests, a 60 s fuzzing run) and prints
-# "N passed, N failed". Exits non-zero on any failure.
+# Installs what is missing, builds, runs every test (gtests, rostests, the Python module's pytest
+# tests, a 60 s fuzzing run) and prints "N passed, N failed". Exits non-zero on any failure.
 set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$ROOT/scripts/setup.sh" || exit 1
@@ -13,6 +13,14 @@ export ROS_LOG_DIR=$ROS_HOME/log
 export ENHANCED_ORB_REQUIRE_DATA=1
 rm -rf "$ROOT/build/test_results"
 make -C "$ROOT/build" run_tests -j1 >"$ROOT/build/run_tests.log" 2>&1
+# The Python module (test/python), from the devel space, against the C++ adapter.
+(source "$ROOT/devel/setup.bash" && cd "$ROOT" && python3 -m pytest -q -p no:cacheprovider test/python \
+  --junitxml="$ROOT/build/test_results/enhanced_orb/pytest-python.xml") >"$ROOT/build/pytest.log" 2>&1 \
+  || tail -n 30 "$ROOT/build/pytest.log"
+[ -s "$ROOT/build/test_results/enhanced_orb/pytest-python.xml" ] \
+  || printf '<testsuites><testsuite name="python" tests="1" failures="1"><testcase classname="python" name="pytest">
+<failure message="pytest did not run: see build/pytest.log"/></testcase></testsuite></testsuites>\n' \
+    >"$ROOT/build/test_results/enhanced_orb/pytest-python.xml"
 # The identity tests once more on a build with only the portable kernels (-DENHANCED_ORB_PORTABLE=ON).
 PORTABLE="$ROOT/build_portable"
 PORTABLE_XML="$ROOT/build/test_results/enhanced_orb/gtest-test_identity_portable.xml"

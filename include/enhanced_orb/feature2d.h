@@ -56,6 +56,8 @@ public:
   bool empty() const override { return false; }
   // Forgets the stream of images seen so far: the next image is judged as a new stream's first.
   void clear() override;
+  // Whether the last image detected on got the moving camera's selection (Extraction::camera_moving).
+  bool cameraMoving() const { return result_.camera_moving; }
 
   // The parameters by their ROS names (as setParam() reads them); read() is readParams() starting
   // from the current ones.
