@@ -12,7 +12,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 PACKAGES=(
   # build
-  build-essential cmake catkin libopencv-dev libgtest-dev libbenchmark-dev pybind11-dev python3-dev
+  build-essential cmake catkin libopencv-dev libgtest-dev libbenchmark-dev pybind11-dev python3-dev python3-setuptools
   libroscpp-dev libnodeletlib-dev libnodelet-dev libimage-transport-dev libcv-bridge-dev librosbag-dev libmessage-filters-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure libdiagnostic-updater-dev
   ros-message-generation ros-message-runtime ros-std-msgs ros-sensor-msgs ros-diagnostic-msgs ros-cmake-modules
