@@ -275,3 +275,21 @@ def test_odd_but_valid_images_give_a_defined_result():
         orb.compute(np.zeros((64, 64), np.uint8), [(1.0, 2.0)])
     described, descriptors = orb.compute(np.zeros((64, 64), np.uint8), [cv2.KeyPoint(1, 1, 31)])
     assert described == () and descriptors is None
+
+
+def test_the_lighting_example_runs_and_finds_more_correct_matches_than_cv2(capsys):
+    folder = ROOT / "../shared/data/lighting/exposure_memorial"
+    if not (folder / "pairs.csv").exists():
+        if os.environ.get("ENHANCED_ORB_REQUIRE_DATA"):
+            pytest.fail("no lighting set at %s" % folder)
+        pytest.skip("no lighting set at %s" % folder)
+    sys.path.insert(0, str(ROOT / "scripts/examples"))
+    try:
+        import lighting_pairs
+    finally:
+        sys.path.pop(0)
+    lighting_pairs.main(folder, 1000)
+    total = capsys.readouterr().out.strip().splitlines()[-1].split()
+    ours, theirs = int(total[2]), int(total[4])
+    assert total[1] == "enhanced_orb" and total[3] == "cv2.ORB"
+    assert ours > theirs > 0
