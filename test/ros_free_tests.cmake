@@ -25,5 +25,7 @@ target_compile_definitions(test_sequence PRIVATE ENHANCED_ORB_MOVING_DIR="${ENHA
 # Camera motion judged from a stream, and the extractors that follow it.
 enhanced_orb_add_gtest(test_camera_motion ${ENHANCED_ORB_ROOT}/test/unit/test_camera_motion.cpp)
 target_link_libraries(test_camera_motion enhanced_orb_evaluation ${ENHANCED_ORB_GTEST_MAIN})
+# The lighting sets and the KITTI excerpts sit beside the EuRoC excerpts in ../shared/data.
+get_filename_component(ENHANCED_ORB_SHARED_DATA "${ENHANCED_ORB_EUROC_DIR}/../.." ABSOLUTE)
 target_compile_definitions(test_camera_motion PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}"
-  ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}")
+  ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}" ENHANCED_ORB_SHARED_DATA="${ENHANCED_ORB_SHARED_DATA}")

@@ -14,8 +14,12 @@ namespace enhanced_orb {
 
 void CameraMotion::reset() {
   reference_.release();
+  previous_.release();
+  reference_is_previous_ = false;
+  reference_shift_ = cv::Point2d();
   since_moved_ = kHoldFrames;
   shift_ = 0.0;
+  new_scene_ = false;
 }
 
 void CameraMotion::spectrumOf(const cv::Mat& gray, cv::Mat& spectrum) {
@@ -34,8 +38,8 @@ void CameraMotion::spectrumOf(const cv::Mat& gray, cv::Mat& spectrum) {
   cv::dft(padded_, spectrum, cv::DFT_COMPLEX_OUTPUT);
 }
 
-double CameraMotion::shiftTo(const cv::Mat& spectrum) {
-  cv::mulSpectrums(reference_, spectrum, cross_, 0, true);
+CameraMotion::Correlation CameraMotion::correlate(const cv::Mat& first, const cv::Mat& second) {
+  cv::mulSpectrums(first, second, cross_, 0, true);
   for (int y = 0; y < cross_.rows; ++y) {
     float* c = cross_.ptr<float>(y);  // re, im, re, im, ...
     for (int x = 0; x < 2 * cross_.cols; x += 2) {
@@ -47,9 +51,28 @@ double CameraMotion::shiftTo(const cv::Mat& spectrum) {
   }
   cv::dft(cross_, correlation_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
   cv::Point peak;
-  cv::minMaxLoc(correlation_, nullptr, nullptr, nullptr, &peak);
-  // The centroid of the 3 x 3 around the peak (the correlation wraps around).
+  double peak_value = 0.0;
+  cv::minMaxLoc(correlation_, nullptr, &peak_value, nullptr, &peak);
   const int w = correlation_.cols, h = correlation_.rows;
+  // The peak's strength: against the correlation's spread, and against the highest value outside
+  // its 5 x 5 (the correlation wraps around).
+  cv::Scalar mean, deviation;
+  cv::meanStdDev(correlation_, mean, deviation);
+  float second_highest = 0.0f;
+  for (int y = 0; y < h; ++y) {
+    const int dy = std::min((y - peak.y + h) % h, (peak.y - y + h) % h);
+    const float* row = correlation_.ptr<float>(y);
+    for (int x = 0; x < w; ++x) {
+      const int dx = std::min((x - peak.x + w) % w, (peak.x - x + w) % w);
+      if (dy > 2 || dx > 2) {
+        second_highest = std::max(second_highest, row[x]);
+      }
+    }
+  }
+  Correlation result;
+  result.strength = deviation[0] > 0.0 ? peak_value / deviation[0] : 0.0;
+  result.peak_ratio = second_highest > 0.0f ? peak_value / second_highest : 0.0;
+  // The centroid of the 3 x 3 around the peak.
   double sum = 0.0, sx = 0.0, sy = 0.0;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
@@ -65,7 +88,8 @@ double CameraMotion::shiftTo(const cv::Mat& spectrum) {
   double y = peak.y + (sum > 0.0 ? sy / sum : 0.0);
   x = x > w / 2.0 ? x - w : x;  // shifts past half the size are negative ones
   y = y > h / 2.0 ? y - h : y;
-  return std::hypot(x, y);
+  result.shift = cv::Point2d(x, y);
+  return result;
 }
 
 bool CameraMotion::update(const cv::Mat& gray) {
@@ -94,17 +118,55 @@ bool CameraMotion::update(const cv::Mat& gray) {
   }
   if (reference_.empty()) {
     spectrumOf(gray, reference_);
+    reference_.copyTo(previous_);
+    reference_is_previous_ = true;
+    reference_shift_ = cv::Point2d();
     shift_ = 0.0;
+    new_scene_ = false;
     return moving();
   }
   spectrumOf(gray, spectrum_);
-  shift_ = shiftTo(spectrum_) * (1 << halves_.size());
-  if (shift_ >= kMovedFraction * gray.cols) {
-    std::swap(reference_, spectrum_);  // the moved frame is the new reference
+  // Whether this frame is a view of the last one's scene; then its shift from the last moved
+  // frame: the reference's own shift from it plus the frame's from the reference (the same
+  // correlation when the reference is the last frame). A reference whose peak is ambiguous (the
+  // light or the view has changed too much since, as driving forward zooms it) gives no shift to
+  // trust: this frame replaces it, with its shift from the last frame. (Carrying the shifts over
+  // such a chain of references instead adds up their errors: a tripod's exposure bracket, 9 stops
+  // from dark to bright, then drifts by more than a moved frame's shift.)
+  const Correlation last = correlate(previous_, spectrum_);
+  new_scene_ = !last.related();
+  cv::Point2d shift;
+  bool is_reference = true;  // whether this frame becomes the reference
+  if (new_scene_) {
+    // The shift is measured from here anew; no evidence of motion nor of stillness: the hold runs on.
+    spectrum_.copyTo(reference_);
+    reference_shift_ = shift;
+  } else if (reference_is_previous_) {
+    shift = reference_shift_ + last.shift;
+    is_reference = false;
+  } else {
+    const Correlation from_reference = correlate(reference_, spectrum_);
+    is_reference = !from_reference.unambiguous();
+    if (is_reference) {
+      shift = last.shift;
+      spectrum_.copyTo(reference_);
+      reference_shift_ = shift;
+    } else {
+      shift = reference_shift_ + from_reference.shift;
+    }
+  }
+  const double scale = 1 << halves_.size();
+  shift_ = std::hypot(shift.x, shift.y) * scale;
+  if (shift_ >= std::max(kMovedFraction * gray.cols, kMinMovedShift * scale)) {
+    spectrum_.copyTo(reference_);  // the moved frame is the new reference
+    reference_shift_ = shift = cv::Point2d();
+    is_reference = true;
     since_moved_ = 0;
   } else if (since_moved_ < kHoldFrames) {
     ++since_moved_;
   }
+  reference_is_previous_ = is_reference;
+  std::swap(previous_, spectrum_);
   return moving();
 }
 

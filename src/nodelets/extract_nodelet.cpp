@@ -106,7 +106,7 @@ private:
 
   // Whether the camera is judged moving at this image (camera_motion auto: `judge`), the images
   // taken in order as one stream. A stamp before the last one (a bag played again) starts a new
-  // stream; each change of the judgment is logged.
+  // stream; each change of the judgment is logged, and a new scene (throttled).
   bool judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge) {
     std::lock_guard<std::mutex> lock(motion_mutex_);
     if (!judge) {
@@ -121,6 +121,12 @@ private:
     last_stamp_ = stamp;
     const bool was_moving = motion_.moving();
     const bool moving = motion_.update(gray);
+    if (motion_.newScene()) {
+      NODELET_INFO_THROTTLE(5.0,
+                            "image unrelated to the last one (a new scene, or another camera): its shift is "
+                            "measured anew, and the camera stays judged %s",
+                            moving ? "moving" : "still");
+    }
     if (moving != was_moving) {
       NODELET_INFO("camera judged %s (shift %.1f px): the %s camera's selection from now on",
                    moving ? "moving" : "still", motion_.shift(), moving ? "moving" : "still");

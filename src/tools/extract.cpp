@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,11 +29,14 @@ namespace {
 const char* const kUsage = R"(usage: enhanced_orb_extract [options] IMAGE... --output DIR
 
 Runs the enhanced ORB extractor on each IMAGE (any format OpenCV reads; colour is turned to gray)
-and writes DIR/<stem>.yml (cv::FileStorage) with keypoints (N x 6 float: x, y, size, angle,
-response, octave), descriptors (N x 32 uint8), thresholds (grid x grid int, level 0), lambda,
-poor_quality, inverted, camera_moving, enhance_ms and extract_ms. The IMAGEs are taken as one
+and writes DIR/<stem>.yml (cv::FileStorage; DIR/<folder>/<stem>.yml when names repeat in several
+folders) with keypoints (N x 6 float: x, y, size, angle, response, octave), descriptors (N x 32
+uint8), thresholds (grid x grid int, level 0), lambda, poor_quality, inverted, camera_moving,
+enhance_ms and extract_ms. The IMAGEs are taken as one
 camera's frames in the order given: with --camera-motion auto (the default) they decide whether the
-camera is judged moving; for images that are not one camera's frames, give --camera-motion still.
+camera is judged moving. An image unrelated to the one before it (another scene) is not motion: it
+is reported as a new scene and the judgment stays as it was, so a folder of unrelated scenes, each
+shot from one place, is judged still throughout. --camera-motion still skips the judgment.
 
 options:
   --output DIR           where to write (created if missing; required)
@@ -186,12 +190,43 @@ void writeImage(const fs::path& path, const cv::Mat& image) {
   file.commit();
 }
 
-// The files each image writes; an error when two images would write the same file or an output
-// would overwrite an input. Checked before anything is written.
+// The deepest folder holding every image.
+fs::path commonFolder(const std::vector<std::string>& images) {
+  fs::path common;
+  for (const std::string& image : images) {
+    const fs::path folder = fs::weakly_canonical(fs::absolute(image)).parent_path();
+    if (common.empty()) {
+      common = folder;
+      continue;
+    }
+    fs::path shared;
+    for (auto a = common.begin(), b = folder.begin(); a != common.end() && b != folder.end() && *a == *b; ++a, ++b) {
+      shared /= *a;
+    }
+    common = shared;
+  }
+  return common;
+}
+
+// The files each image writes: DIR/<stem>.*, or, when two images share a name (one per folder, as
+// in a data set of scenes), DIR/<folder>/<stem>.* with the image's folder below the images' common
+// one. An error when two images would still write the same file or an output would overwrite an
+// input. Checked before anything is written.
 std::string planOutputs(const Options& opt, std::vector<fs::path>& stems) {
+  std::set<std::string> names;
+  bool repeated = false;
+  for (const std::string& image : opt.images) {
+    repeated = !names.insert(fs::path(image).stem().string()).second || repeated;
+  }
+  const fs::path common = repeated ? commonFolder(opt.images) : fs::path();
   std::map<std::string, std::string> writer;  // output file -> image
   for (const std::string& image : opt.images) {
-    const fs::path stem = fs::path(opt.output) / fs::path(image).stem();
+    fs::path folder;
+    if (repeated) {
+      folder = fs::weakly_canonical(fs::absolute(image)).parent_path().lexically_relative(common);
+      folder = folder == "." ? fs::path() : folder;
+    }
+    const fs::path stem = fs::path(opt.output) / folder / fs::path(image).stem();
     std::vector<std::string> files{stem.string() + ".yml"};
     if (opt.save_enhanced) {
       files.push_back(stem.string() + "_enhanced.png");
@@ -219,6 +254,7 @@ std::string planOutputs(const Options& opt, std::vector<fs::path>& stems) {
 
 // DIR/<stem>.yml, and the enhanced and annotated images when asked for.
 void writeOutputs(const Options& opt, const std::string& stem, const Extraction& r) {
+  fs::create_directories(fs::path(stem).parent_path());
   writeResult(stem + ".yml", r);
   if (opt.save_enhanced) {
     writeImage(stem + "_enhanced.png", r.image);
@@ -293,6 +329,9 @@ int main(int argc, char** argv) {
       writeOutputs(opt, stems[i].string(), r);
       std::cout << path << ": " << r.keypoints.size() << " keypoints, enhance " << r.timings.enhance_ms
                 << " ms, extract " << r.timings.extractMs() << " ms";
+      if (extractor.judgesMotion()) {
+        std::cout << ", camera " << (r.camera_moving ? "moving" : "still") << (motion.newScene() ? " (new scene)" : "");
+      }
       sum_enhance += r.timings.enhance_ms;
       sum_extract += r.timings.extractMs();
       ++timed;

@@ -164,6 +164,98 @@ TEST(CameraMotion, SharedFramesOfAStillAndAMovingCamera) {
   }
 }
 
+// The PNG images under a folder, its subfolders' too, sorted by path as a user lists them.
+std::vector<std::filesystem::path> imagesIn(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> paths;
+  if (std::filesystem::is_directory(dir)) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+      if (entry.path().extension() == ".png") {
+        paths.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+// A folder of unrelated scenes, each shot several times from one place (the lighting sets sorted
+// by name, as a user passes them to enhanced_orb_extract): every change of scene is a new scene,
+// never motion, so no image of them is judged moving; within a scene no image is a new scene.
+TEST(CameraMotion, ANewSceneStartsANewStreamInsteadOfCountingAsMotion) {
+  const std::string root = ENHANCED_ORB_SHARED_DATA "/lighting";
+  size_t images = 0, changes = 0;
+  for (const char* set : {"exposure_hdrps", "exposure_duth", "exposure_memorial", "webcam"}) {
+    const std::vector<std::filesystem::path> paths = imagesIn(root + "/" + set);
+    CameraMotion motion;
+    cv::Size last_size;
+    std::filesystem::path last_scene;
+    for (const std::filesystem::path& path : paths) {
+      const cv::Mat image = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+      ASSERT_FALSE(image.empty()) << path;
+      const bool moving = motion.update(image);
+      const bool same_size = image.size() == last_size;
+      EXPECT_FALSE(moving) << path;
+      if (!last_scene.empty() && same_size) {
+        const bool other_scene = path.parent_path() != last_scene;
+        EXPECT_EQ(motion.newScene(), other_scene) << path << " after an image of " << last_scene;
+        changes += other_scene;
+      }
+      last_size = image.size();
+      last_scene = path.parent_path();
+      ++images;
+    }
+  }
+  if (images == 0) {
+    std::vector<cv::Mat> none;
+    REQUIRE_FRAMES(none, root);
+  }
+  EXPECT_GE(changes, 15u);  // scene changes between images of one size: the test has teeth
+}
+
+// Frames of two cameras interleaved (a camera switch at every frame): each switch is a new scene,
+// and the still camera's frames stay judged still; a moving camera's frames, indoors at 20 Hz or
+// driving at 10 Hz, are never a new scene. A car driving straight zooms the view more than it
+// shifts it: it is judged moving within its first second and from then on.
+TEST(CameraMotion, CamerasSwitchedAreNewScenesAndDrivingIsMotion) {
+  const std::vector<cv::Mat> still = test::cam0Frames(ENHANCED_ORB_EUROC_DIR, 10);
+  REQUIRE_FRAMES(still, ENHANCED_ORB_EUROC_DIR);
+  const std::vector<cv::Mat> moving = test::cam0Frames(ENHANCED_ORB_MOVING_DIR, 30);
+  REQUIRE_FRAMES(moving, ENHANCED_ORB_MOVING_DIR);
+  CameraMotion switched;
+  for (size_t i = 0; i < std::min(still.size(), moving.size()); ++i) {
+    EXPECT_FALSE(switched.update(still[i])) << i;
+    EXPECT_EQ(switched.newScene(), i > 0) << i;
+    EXPECT_FALSE(switched.update(moving[i])) << i;
+    EXPECT_TRUE(switched.newScene()) << i;
+  }
+  for (const char* excerpt : {"straight_51", "turn_51"}) {
+    const std::string dir = std::string(ENHANCED_ORB_SHARED_DATA "/kitti/") + excerpt + "/image_0";
+    std::vector<cv::Mat> frames;
+    for (const std::filesystem::path& path : imagesIn(dir)) {
+      frames.push_back(cv::imread(path.string(), cv::IMREAD_GRAYSCALE));
+    }
+    REQUIRE_FRAMES(frames, dir);
+    for (const evaluation::LightCondition& light : evaluation::lightConditions()) {
+      CameraMotion motion;
+      int first_moving = -1, still_after = 0, new_scenes = 0;
+      for (size_t i = 0; i < frames.size(); ++i) {
+        const cv::Mat frame =
+            light.apply(frames[i], static_cast<int>(i), static_cast<int>(frames.size()), 900 + static_cast<int>(i));
+        const bool moving = motion.update(frame);
+        if (moving && first_moving < 0) {
+          first_moving = static_cast<int>(i);
+        }
+        still_after += !moving && first_moving >= 0;
+        new_scenes += motion.newScene();
+      }
+      EXPECT_EQ(new_scenes, 0) << excerpt << ", " << light.name;
+      EXPECT_GE(first_moving, 1) << excerpt << ", " << light.name;
+      EXPECT_LE(first_moving, 10) << excerpt << ", " << light.name;
+      EXPECT_EQ(still_after, 0) << excerpt << ", " << light.name;
+    }
+  }
+}
+
 // With camera_motion auto, a frame judged moving gets exactly the moving selection (the motion
 // preset's keypoints), one judged still the still one; the adapters judge the frames they are given.
 TEST(CameraMotion, ExtractorsFollowTheJudgment) {

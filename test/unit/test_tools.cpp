@@ -126,11 +126,23 @@ const std::string kCompare = ENHANCED_ORB_COMPARE_TOOL;
 }  // namespace
 
 TEST_F(Tools, ExtractRefusesCollidingOutputsBeforeWritingAnything) {
-  const std::string a = image("a/x.png"), b = image("b/x.png"), c = image("x.jpg");
+  const std::string a = image("a/x.png"), b = image("b/x.png"), c = image("b/x.jpg");
   const Outcome r = run(kExtract + " " + a + " " + b + " " + c + " --output " + quoted(dir_ / "out"));
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("would both write"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(dir_ / "out" / "x.yml"));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// A data set's layout, <scene>/<image>, its names repeating in every scene: each scene's results
+// go to a folder of its own, named below the images' common folder.
+TEST_F(Tools, ExtractKeepsTheFoldersOfImagesWhoseNamesRepeat) {
+  const std::string a = image("set/a/00.png"), b = image("set/b/00.png"), c = image("set/b/01.png");
+  const Outcome r = run(kExtract + " " + a + " " + b + " " + c + " --output " + quoted(dir_ / "out"));
+  EXPECT_EQ(r.code, 0) << r.output;
+  for (const char* written : {"a/00.yml", "b/00.yml", "b/01.yml"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "out" / written)) << written << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "00.yml"));
 }
 
 TEST_F(Tools, ExtractRefusesToOverwriteAnInput) {
