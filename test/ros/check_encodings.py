@@ -10,7 +10,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
-from pipeline_client import H, W, PipelineClient, image, scene
+from pipeline_client import H, OUTPUT_S, W, PipelineClient, image, scene
 
 GRAY = scene()
 GOOD = {
@@ -40,7 +40,7 @@ class Encodings(unittest.TestCase):
         self.warnings = []
         self.lock = threading.Lock()
         rospy.Subscriber("/rosout", Log, self.on_log, queue_size=100)
-        self.assertTrue(self.client.connected(), "the pipeline never subscribed its input")
+        self.assertTrue(self.client.connected(), "no frame came through the pipeline")
 
     def on_log(self, msg):
         if msg.level >= Log.WARN:
@@ -58,7 +58,7 @@ class Encodings(unittest.TestCase):
 
     def expect_output(self, msg, what):
         stamp = self.client.send(msg)
-        self.assertTrue(self.client.processed(stamp, 10.0), "no keypoints for " + what)
+        self.assertTrue(self.client.processed(stamp, OUTPUT_S), "no keypoints for " + what)
 
     def test_supported_encodings_give_output(self):
         for name, msg in GOOD.items():
@@ -67,7 +67,7 @@ class Encodings(unittest.TestCase):
     def test_bad_frames_warn_and_the_next_good_frame_is_processed(self):
         for name, (msg, text) in BAD.items():
             stamp = self.client.send(msg)
-            self.assertTrue(self.warned(text, 10.0),
+            self.assertTrue(self.warned(text, OUTPUT_S),
                             "no warning containing %r for %s; warnings: %s" % (text, name, self.warnings))
             self.assertFalse(self.client.processed(stamp, 0.5), "output for a bad frame: " + name)
             self.expect_output(GOOD["mono8"], "the good frame after " + name)

@@ -19,7 +19,7 @@ def subscribed(topic):
 
 
 class Lazy(unittest.TestCase):
-    def wait_until(self, condition, what, seconds=10.0):
+    def wait_until(self, condition, what, seconds=30.0):
         deadline = rospy.Time.now() + rospy.Duration(seconds)
         while rospy.Time.now() < deadline:
             if condition():

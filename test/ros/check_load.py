@@ -25,6 +25,9 @@ from sensor_msgs.msg import Image
 
 from enhanced_orb.msg import KeypointArray
 
+# How long the feeder waits for a frame in flight before counting it lost: long enough that a
+# loaded machine alone cannot lose one (a frame takes milliseconds).
+PATIENCE_S = 60.0
 MANAGER = "/cam0/enhanced_orb_manager"
 ARGS = None
 
@@ -77,13 +80,13 @@ class Load(unittest.TestCase):
         while sent < count and not rospy.is_shutdown() and not (stop and stop.is_set()):
             with self.lock:
                 while sent - (self.processed - start) >= window:
-                    if not self.lock.wait(10.0):
+                    if not self.lock.wait(PATIENCE_S):
                         return sent, self.processed - start
             msg = self.frames[sent % len(self.frames)]
             msg.header.stamp = rospy.Time(1, 0) + rospy.Duration(0, 1000 * (sent + 1))
             self.pub.publish(msg)
             sent += 1
-        deadline = time.time() + 10
+        deadline = time.time() + PATIENCE_S
         with self.lock:
             while self.processed - start < sent and time.time() < deadline:
                 self.lock.wait(1.0)

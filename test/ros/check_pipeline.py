@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Every KeypointArray of the running pipeline is consistent with the image it came from."""
+"""Every KeypointArray and annotated image of the running pipeline is consistent with the image it
+came from."""
 import collections
 import unittest
 
@@ -12,6 +13,7 @@ from enhanced_orb.msg import KeypointArray
 MESSAGES = 40  # per output
 BUDGET = 1000  # max_features of config/default.yaml
 OUTPUTS = ("/cam0/keypoints", "/cam0/baseline/keypoints", "/cam0/paper/keypoints")
+ANNOTATED = "/cam0/image_annotated"
 
 
 class PipelineConsistency(unittest.TestCase):
@@ -21,6 +23,8 @@ class PipelineConsistency(unittest.TestCase):
         rospy.Subscriber("/cam0/image_raw", Image, self.on_image, queue_size=50)
         for name in OUTPUTS:
             rospy.Subscriber(name, KeypointArray, self.on_keypoints, callback_args=name, queue_size=50)
+        self.annotated = []
+        rospy.Subscriber(ANNOTATED, Image, self.annotated.append, queue_size=50)
 
     def on_image(self, msg):
         self.images[msg.header.stamp] = (msg.width, msg.height)
@@ -31,10 +35,11 @@ class PipelineConsistency(unittest.TestCase):
     def wait_for_messages(self):
         deadline = rospy.Time.now() + rospy.Duration(60)
         while not rospy.is_shutdown() and rospy.Time.now() < deadline:
-            if all(len(self.outputs[n]) >= MESSAGES for n in OUTPUTS):
+            if all(len(self.outputs[n]) >= MESSAGES for n in OUTPUTS) and len(self.annotated) >= MESSAGES:
                 return
             rospy.sleep(0.1)
-        self.fail("too few KeypointArrays: %s" % {n: len(m) for n, m in self.outputs.items()})
+        self.fail("too few messages: %s, %d on %s" % ({n: len(m) for n, m in self.outputs.items()},
+                                                       len(self.annotated), ANNOTATED))
 
     def check_common(self, msg):
         self.assertIn(msg.header.stamp, self.images, "stamp %s is no input image's" % msg.header.stamp)
@@ -52,7 +57,14 @@ class PipelineConsistency(unittest.TestCase):
 
     def test_every_message_is_consistent(self):
         self.wait_for_messages()
-        rospy.sleep(0.5)  # let the input stamps of the last outputs arrive too
+        # The input images of the outputs come to this node on a topic of their own: wait for them.
+        deadline = rospy.Time.now() + rospy.Duration(60)
+        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+            unseen = [m.header.stamp for msgs in list(self.outputs.values()) + [self.annotated] for m in msgs
+                      if m.header.stamp not in self.images]
+            if not unseen:
+                break
+            rospy.sleep(0.1)
         improved = {m.header.stamp: m for m in self.outputs["/cam0/keypoints"]}
         baseline = {m.header.stamp: m for m in self.outputs["/cam0/baseline/keypoints"]}
         paper = {m.header.stamp: m for m in self.outputs["/cam0/paper/keypoints"]}
@@ -69,6 +81,11 @@ class PipelineConsistency(unittest.TestCase):
             self.assertEqual(msg.threshold_mode, "fixed")
             self.assertTrue(all(t == 20 for t in msg.cell_thresholds), msg.cell_thresholds)
             self.assertLessEqual(len(msg.keypoints), BUDGET)
+        for msg in list(self.annotated):
+            self.assertIn(msg.header.stamp, self.images, "annotated image of no input image")
+            self.assertEqual((msg.width, msg.height), self.images[msg.header.stamp])
+            self.assertEqual(msg.encoding, "bgr8")
+            self.assertEqual(len(msg.data), msg.step * msg.height)
         common = set(improved) & set(baseline)
         self.assertGreater(len(common), 10)
         for stamp in common:

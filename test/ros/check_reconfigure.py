@@ -13,7 +13,10 @@ from sensor_msgs.msg import Image
 from enhanced_orb.msg import KeypointArray
 
 SETTLE_S = 1.0   # frames queued before a change may still use the old values
-COLLECT_S = 6.0  # more than one loop of the 4.75 s bag
+# more than two loops of the 4.75 s bag: the latest message of each stamp is kept, so one that used
+# the old values (queued before the change, however late it comes under load) is replaced by that
+# stamp's next loop
+COLLECT_S = 10.0
 
 
 class Collector:

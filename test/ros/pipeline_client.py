@@ -9,6 +9,9 @@ from sensor_msgs.msg import Image
 from enhanced_orb.msg import KeypointArray
 
 W, H = 160, 120
+# How long a test waits for an output that must come: long enough that a loaded machine alone cannot
+# fail it (a frame takes milliseconds), so a failure means the output never came.
+OUTPUT_S = 60.0
 
 
 def scene(w=W, h=H, seed=3):
@@ -46,12 +49,18 @@ class PipelineClient:
         with self.lock:
             self.stamps.add(msg.header.stamp)
 
-    def connected(self, seconds=30.0):
-        """Whether the pipeline subscribed its input (it does once its outputs have subscribers)."""
+    def connected(self, seconds=OUTPUT_S):
+        """Whether the whole chain is connected: the pipeline subscribed its input (it does once its
+        outputs have subscribers) and a frame has come through to keypoints. The chain's inner
+        connections are made in their own time after the input's: a frame sent before they are can
+        be lost, so frames are sent, a second apart, until one arrives."""
         deadline = rospy.Time.now() + rospy.Duration(seconds)
         while self.pub.get_num_connections() == 0 and rospy.Time.now() < deadline:
             rospy.sleep(0.1)
-        return self.pub.get_num_connections() > 0
+        while rospy.Time.now() < deadline:
+            if self.processed(self.send(image("mono8", scene())), 1.0):
+                return True
+        return False
 
     def send(self, msg):
         """Publishes `msg` with a stamp of its own; returns the stamp."""
