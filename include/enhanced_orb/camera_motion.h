@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/hal/hal.hpp>
 
 namespace enhanced_orb {
 
@@ -84,7 +85,21 @@ private:
   };
   Correlation correlate(const cv::Mat& first, const cv::Mat& second);
 
+  // The planned forward and inverse DFTs of the thumbnail's padded size. A copy of a CameraMotion
+  // plans its own (a plan keeps working buffers: two streams must not share one).
+  struct Plans {
+    cv::Ptr<cv::hal::DFT2D> forward, inverse;
+    Plans() = default;
+    Plans(const Plans&) {}
+    Plans& operator=(const Plans&) {
+      forward.reset();
+      inverse.reset();
+      return *this;
+    }
+  };
+
   cv::Size frame_size_, thumbnail_;
+  Plans plans_;
   std::vector<cv::Mat> halves_;  // the frame halved once, twice, ... (the last is the thumbnail)
   cv::Mat reference_;            // the reference frame's spectrum (CV_32FC2); empty: no stream yet
   cv::Mat previous_;             // the last frame's spectrum

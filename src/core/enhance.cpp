@@ -252,6 +252,35 @@ WeightedHistogram toWeightedHistogram(const std::array<std::uint64_t, 256>& coun
   return histogram;
 }
 
+// The tone curve of the 8-bit enhancement, from the filtered image f: equalize's (eqs 10-16, the
+// edge weights counted per band of `starts`) or stretch's; the identity for an image that is not
+// poor.
+ToneLut toneCurve8Bit(const cv::Mat& f, const EnhanceParams& params, bool poor_quality, const std::vector<int>& starts,
+                      EnhanceWorkspace& scratch) {
+  ToneLut curve{};
+  if (!poor_quality) {
+    for (int i = 0; i < 256; ++i) {
+      curve[i] = static_cast<float>(i);
+    }
+    return curve;
+  }
+  if (params.tone_curve == ToneCurve::kStretch) {
+    return stretchingLut(histogramOf(f), params.tau);
+  }
+  std::vector<std::array<std::uint64_t, 256>>& counts = scratch.counts;
+  counts.assign(starts.size() - 1, {});
+  forEachBand(starts, [&](int y0, int y1) {
+    const size_t k = static_cast<size_t>(std::lower_bound(starts.begin(), starts.end(), y0) - starts.begin());
+    addEdgeWeights(f, y0, y1, counts[k]);
+  });
+  for (size_t k = 1; k < counts.size(); ++k) {
+    for (int i = 0; i < 256; ++i) {
+      counts[0][i] += counts[k][i];
+    }
+  }
+  return equalizingLut(toWeightedHistogram(counts[0]), params.alpha, params.tau);
+}
+
 // The 8-bit enhancement of tone_curve equalize (the default mode) and stretch: f by OpenCV's
 // fixed-point Gaussian, one global curve from f's histogram, and E as one table where sharpening
 // is -1.
@@ -269,34 +298,16 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   // Eqs 17-20 with the default mode's curve: E = I + sharpening (I - f) + beta (LUT(f) - f).
   const double s = params.sharpening;
   const double b = result.poor_quality ? params.beta : 0.0;
-  ToneLut curve{};
-  for (int i = 0; i < 256; ++i) {
-    curve[i] = static_cast<float>(i);
-  }
-  if (result.poor_quality && params.tone_curve == ToneCurve::kStretch) {
-    curve = stretchingLut(histogramOf(f), params.tau);
-  } else if (result.poor_quality) {
-    std::vector<std::array<std::uint64_t, 256>>& counts = scratch.counts;
-    counts.assign(starts.size() - 1, {});
-    forEachBand(starts, [&](int y0, int y1) {
-      const size_t k = static_cast<size_t>(std::lower_bound(starts.begin(), starts.end(), y0) - starts.begin());
-      addEdgeWeights(f, y0, y1, counts[k]);
-    });
-    for (size_t k = 1; k < counts.size(); ++k) {
-      for (int i = 0; i < 256; ++i) {
-        counts[0][i] += counts[k][i];
-      }
-    }
-    curve = equalizingLut(toWeightedHistogram(counts[0]), params.alpha, params.tau);
-  }
+  const ToneLut curve = toneCurve8Bit(f, params, result.poor_quality, starts, scratch);
   result.image = output;
   result.image.create(gray.size(), CV_8UC1);
   if (s == -1.0) {
     // E = f + beta (LUT(f) - f): one table of f.
-    cv::Mat table(1, 256, CV_8U);
+    std::uint8_t entries[256];
     for (int i = 0; i < 256; ++i) {
-      table.at<std::uint8_t>(i) = cv::saturate_cast<std::uint8_t>(i + b * (curve[i] - i));
+      entries[i] = cv::saturate_cast<std::uint8_t>(i + b * (curve[i] - i));
     }
+    const cv::Mat table(1, 256, CV_8U, entries);  // a view: no allocation per frame
     forEachBand(starts, [&](int y0, int y1) {
       cv::Mat dst = result.image(band(y0, y1));
       cv::LUT(f(band(y0, y1)), table, dst);

@@ -46,13 +46,7 @@ const cv::Mat& scene() {
   return s;
 }
 
-#define REQUIRE_FRAMES(frames, dir)                                                          \
-  if ((frames).empty()) {                                                                    \
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {                                          \
-      FAIL() << "frames not found under " << (dir) << " (ENHANCED_ORB_REQUIRE_DATA is set)"; \
-    }                                                                                        \
-    GTEST_SKIP() << "frames not found under " << (dir) << " (../shared absent): skipped";    \
-  }
+#define REQUIRE_FRAMES(frames, dir) REQUIRE_SHARED_DATA(!(frames).empty(), std::string("frames under ") + (dir))
 
 TEST(CameraMotion, MeasuresTheShiftOfTheView) {
   for (double dx : {5.0, 12.0, 40.0, -25.0}) {

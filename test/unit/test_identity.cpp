@@ -470,12 +470,7 @@ TEST(Corners, ScoreMapDetectorEqualsCvFastPerCell) {
 TEST(Extractor, IdenticalToTheReferenceOnEveryEurocFrameInEveryModeAndBudget) {
   cv::setNumThreads(2);  // OpenCV's pool must have room for the second thread
   const std::vector<cv::Mat> frames = eurocFrames(identityStride());
-  if (frames.empty()) {
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
-      FAIL() << "EuRoC frames not found under " << test::eurocDir() << " (ENHANCED_ORB_REQUIRE_DATA is set)";
-    }
-    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir() << " (../shared absent): skipped";
-  }
+  REQUIRE_SHARED_DATA(!frames.empty(), "EuRoC frames under " + test::eurocDir());
   for (const Mode& mode : modes()) {
     for (int budget : {0, 1000}) {
       Params params = mode.params;
@@ -503,12 +498,7 @@ TEST(Extractor, IdenticalToTheReferenceAtEveryInstructionSet) {
   SimdScope scope;
   cv::setNumThreads(2);
   const std::vector<cv::Mat> frames = eurocFrames(19);
-  if (frames.empty()) {
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
-      FAIL() << "EuRoC frames not found under " << test::eurocDir() << " (ENHANCED_ORB_REQUIRE_DATA is set)";
-    }
-    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir() << " (../shared absent): skipped";
-  }
+  REQUIRE_SHARED_DATA(!frames.empty(), "EuRoC frames under " + test::eurocDir());
   for (const Mode& mode : modes()) {
     for (int budget : {0, 1000}) {
       Params params = mode.params;

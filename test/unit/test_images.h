@@ -11,6 +11,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "shared_data.h"
+
 namespace enhanced_orb {
 namespace test {
 

@@ -286,12 +286,7 @@ TEST(Extractor, InvalidParamsAndInputThrow) {
 
 TEST(Extractor, DarkenedEurocFrameGivesMoreKeypointsThanBaseline) {
   const cv::Mat frame = test::eurocFrame();
-  if (frame.empty()) {
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
-      FAIL() << "EuRoC frames not found under " << test::eurocDir() << " (ENHANCED_ORB_REQUIRE_DATA is set)";
-    }
-    GTEST_SKIP() << "EuRoC frames not found under " << test::eurocDir() << " (../shared absent): skipped";
-  }
+  REQUIRE_SHARED_DATA(!frame.empty(), "EuRoC frames under " + test::eurocDir());
   cv::Mat dark;
   frame.convertTo(dark, CV_8U, 0.4);  // I * 0.4
   const size_t improved = OrbExtractor(Params::paper()).extract(dark).keypoints.size();

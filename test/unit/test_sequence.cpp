@@ -14,6 +14,7 @@
 
 #include "enhanced_orb/evaluation/orb_slam_style.h"
 #include "enhanced_orb/evaluation/sequence.h"
+#include "shared_data.h"
 
 namespace ev = enhanced_orb::evaluation;
 namespace fs = std::filesystem;
@@ -274,12 +275,7 @@ TEST(OrbSlamStyle, ExtractsAtMostTheBudgetWithCvOrbDescriptors) {
 // The shared moving EuRoC excerpt, read with its files exactly as ETH ships them.
 TEST(Sequence, ReadsTheMovingEurocExcerpt) {
   const std::string dir = ENHANCED_ORB_MOVING_DIR;
-  if (!fs::is_directory(dir)) {
-    if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) {
-      FAIL() << dir << " is missing";
-    }
-    GTEST_SKIP() << dir << " is missing";
-  }
+  REQUIRE_SHARED_DATA(fs::is_directory(dir), dir);
   const ev::Sequence seq = ev::readSequence(dir);
   EXPECT_EQ(seq.frames.size(), 300u);
   EXPECT_EQ(seq.right_frames.size(), 300u);

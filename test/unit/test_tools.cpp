@@ -48,18 +48,8 @@ Outcome run(const std::string& command) {
   return r;
 }
 
-// A test that reads the shared data: without the file, skipped; failed instead under
-// ENHANCED_ORB_REQUIRE_DATA, which the test command sets.
-#define NEEDS_DATA(path)                              \
-  do {                                                \
-    const std::string needed = (path);                \
-    if (!fs::exists(needed)) {                        \
-      if (std::getenv("ENHANCED_ORB_REQUIRE_DATA")) { \
-        FAIL() << needed << " is missing";            \
-      }                                               \
-      GTEST_SKIP() << needed << " is missing";        \
-    }                                                 \
-  } while (false)
+// A test that reads this file of the shared data.
+#define NEEDS_DATA(path) REQUIRE_SHARED_DATA(fs::exists(path), std::string(path))
 
 class Tools : public ::testing::Test {
 protected:
