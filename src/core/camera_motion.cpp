@@ -34,7 +34,7 @@ void CameraMotion::spectrumOf(const cv::Mat& gray, cv::Mat& spectrum) {
                0, 0, cv::INTER_AREA);
     level = half;
   }
-  level.convertTo(thumb_, CV_32F, 1.0, -cv::mean(level)[0]);  // less its mean
+  level.convertTo(thumb_, CV_32F, 1.0, -cv::mean(level)[0]);             // less its mean
   cv::Mat windowed = padded_(cv::Rect(0, 0, thumb_.cols, thumb_.rows));  // the rest of padded_ stays 0
   cv::multiply(thumb_, window_, windowed);
   spectrum.create(padded_.size(), CV_32FC2);
