@@ -58,6 +58,9 @@ public:
   void clear() override;
   // Whether the last image detected on got the moving camera's selection (Extraction::camera_moving).
   bool cameraMoving() const { return result_.camera_moving; }
+  // The last detect/detectAndCompute's times, the whole call: conversion to gray, judgment,
+  // enhancement, extraction (StageTimings::totalMs()).
+  const StageTimings& timings() const { return result_.timings; }
 
   // The parameters by their ROS names (as setParam() reads them); read() is readParams() starting
   // from the current ones.

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/corners.h"
 #include "enhanced_orb/orientation.h"
 #include "enhanced_orb/params.h"
@@ -30,6 +31,8 @@ constexpr std::int64_t kMaxImagePixels = 32LL << 20;
 // side by side: each stage is then its time summed over the levels, and extract_ms (wall clock)
 // is less than their sum.
 struct StageTimings {
+  double convert_ms = 0.0;  // the caller's input turned to 8-bit gray (adapters, nodelets; 0 for gray)
+  double judge_ms = 0.0;    // the camera-motion judgment before the extraction (a stream's frames only)
   double enhance_ms = 0.0;
   double pyramid_ms = 0.0;
   double threshold_ms = 0.0;
@@ -40,7 +43,8 @@ struct StageTimings {
   double extract_ms = 0.0;     // wall clock of everything after the enhancement
 
   double extractMs() const { return extract_ms; }
-  double totalMs() const { return enhance_ms + extract_ms; }
+  // The whole call: conversion, judgment, enhancement and extraction.
+  double totalMs() const { return convert_ms + judge_ms + enhance_ms + extract_ms; }
 };
 
 struct Extraction {
@@ -98,6 +102,12 @@ public:
   // The same with a mask and, on request, the pyramid. Throws std::invalid_argument when the mask
   // is neither empty nor CV_8UC1 of gray's size.
   void extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const;
+
+  // A stream's next frame: judged by `motion` (fed the stream's frames in order) when the
+  // extractor judgesMotion(), which sets options.camera_moving, then extracted; the judgment's time
+  // is out.timings.judge_ms. What every consumer of a stream (the adapters, the nodelet, the tools)
+  // calls.
+  void extract(const cv::Mat& gray, CameraMotion& motion, ExtractOptions& options, Extraction& out) const;
 
   // The descriptors of given keypoints (level-0 coordinates, `octave` naming the level, `angle` in
   // degrees, as extract() gives them) on the same enhanced and smoothed pyramid as extract(), in

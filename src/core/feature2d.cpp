@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "stopwatch.h"
+
 namespace enhanced_orb {
 namespace {
 
@@ -111,7 +113,9 @@ void ORB::setParams(const Params& params) {
 
 void ORB::detectAndCompute(cv::InputArray image, cv::InputArray mask, std::vector<cv::KeyPoint>& keypoints,
                            cv::OutputArray descriptors, bool useProvidedKeypoints) {
+  Stopwatch clock;
   const cv::Mat gray = grayOf(image.getMat());
+  const double convert_ms = clock.lap();
   const cv::Mat mask_mat = mask.getMat();
   if (!mask_mat.empty() && (mask_mat.type() != CV_8UC1 || mask_mat.size() != gray.size())) {
     CV_Error(cv::Error::StsBadArg, "enhanced_orb::ORB: the mask must be 8-bit, one channel, of the image's size");
@@ -126,8 +130,8 @@ void ORB::detectAndCompute(cv::InputArray image, cv::InputArray mask, std::vecto
   }
   ExtractOptions options;
   options.mask = mask_mat;
-  options.camera_moving = extractor_.judgesMotion() && motion_.update(gray);
-  extractor_.extract(gray, options, result_);
+  extractor_.extract(gray, motion_, options, result_);
+  result_.timings.convert_ms = convert_ms;
   keypoints = result_.keypoints;
   if (descriptors.needed()) {
     result_.descriptors.copyTo(descriptors);

@@ -295,6 +295,14 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
   out.timings.extract_ms = wall.lap();
 }
 
+void OrbExtractor::extract(const cv::Mat& gray, CameraMotion& motion, ExtractOptions& options, Extraction& out) const {
+  Stopwatch clock;
+  options.camera_moving = judgesMotion() && motion.update(gray);
+  const double judge_ms = clock.lap();
+  extract(gray, options, out);
+  out.timings.judge_ms = judge_ms;
+}
+
 void OrbExtractor::describe(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const {
   checkInput(gray, cv::Mat());
   const auto ws = lease();

@@ -8,6 +8,7 @@
 #include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/feature2d.h"
 #include "enhanced_orb/orb_extractor.h"
+#include "stopwatch.h"
 
 namespace enhanced_orb {
 namespace {
@@ -67,6 +68,7 @@ int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std:
   if (input.empty()) {
     return -1;
   }
+  Stopwatch clock;
   cv::Mat gray = input;
   if (input.type() == CV_8UC3) {
     cv::cvtColor(input, gray, cv::COLOR_BGR2GRAY);
@@ -79,9 +81,10 @@ int OrbSlamExtractor::operator()(cv::InputArray image, cv::InputArray mask, std:
   ExtractOptions options;
   options.mask = mask.getMat();
   options.keep_pyramid = true;
-  options.camera_moving = state_->extractor.judgesMotion() && state_->motion.update(gray);
+  const double convert_ms = clock.lap();
   Extraction& result = state_->result;
-  state_->extractor.extract(gray, options, result);
+  state_->extractor.extract(gray, state_->motion, options, result);
+  result.timings.convert_ms = convert_ms;
   std::swap(mvImagePyramid, result.pyramid);  // the previous levels' buffers are reused next time
 
   // ORB-SLAM3's order: keypoints outside the lapping area from the front, inside it from the back.

@@ -40,7 +40,7 @@ private:
     enabled_ = params.enhance_enabled;
   }
 
-  void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
+  void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray, double /*convert_ms*/) override {
     EnhanceParams params;
     bool enabled = true;
     {

@@ -1,5 +1,6 @@
 // enhanced_orb/ExtractNodelet: image -> keypoints (KeypointArray) and image_annotated (bgr8),
 // ORB with the truncated adaptive threshold (section III-B) or the original fixed threshold.
+#include <chrono>
 #include <iomanip>
 #include <memory>
 #include <mutex>
@@ -58,7 +59,7 @@ private:
                         config.draw_max};
   }
 
-  void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) override {
+  void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray, double convert_ms) override {
     publishAddress(address_pub_, *msg);
     std::shared_ptr<const OrbExtractor> extractor;
     DrawOptions draw;
@@ -68,9 +69,14 @@ private:
       draw = draw_;
     }
     ExtractOptions options;
+    const auto judging = std::chrono::steady_clock::now();
     options.camera_moving = judgeMotion(msg->header.stamp, gray, extractor->judgesMotion());
+    const double judge_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - judging).count();
     Extraction result;
     extractor->extract(gray, options, result);
+    result.timings.convert_ms = convert_ms;
+    result.timings.judge_ms = judge_ms;
     if (keypoints_pub_.getNumSubscribers() > 0) {
       keypoints_pub_.publish(toMessage(result, msg->header, extractor->params()));
     }

@@ -107,7 +107,10 @@ void ImageNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
     }
     last_seq_ = seq;
   }
+  const auto converting = std::chrono::steady_clock::now();
   const GrayImage input = toGrayImage(msg);
+  const double convert_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - converting).count();
   if (!input.error.empty()) {
     warnThrottled(input.reason, input.error);
     std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -117,7 +120,7 @@ void ImageNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
   bool ok = false;
   try {
-    process(msg, input.gray);
+    process(msg, input.gray, convert_ms);
     ok = true;
   } catch (const std::exception& e) {
     warnThrottled("exception", std::string("processing failed, image dropped: ") + e.what());

@@ -31,9 +31,9 @@ protected:
   virtual void advertiseOutputs() = 0;
   // Whether any output has a subscriber; the input is subscribed only while one has.
   virtual bool outputsHaveSubscribers() const = 0;
-  // Processes one valid input; `gray` is the input as 8-bit gray (it may share `msg`'s buffer).
-  // Exceptions are caught, logged and counted by the caller.
-  virtual void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray) = 0;
+  // Processes one valid input; `gray` is the input as 8-bit gray (it may share `msg`'s buffer),
+  // which took `convert_ms` to make. Exceptions are caught, logged and counted by the caller.
+  virtual void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray, double convert_ms) = 0;
 
   // Adds a nodelet's own values to its /diagnostics status (called once a second).
   virtual void addDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& /*status*/) {}

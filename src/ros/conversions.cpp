@@ -133,6 +133,8 @@ KeypointArrayPtr toMessage(const Extraction& extraction, const std_msgs::Header&
   msg->n_levels = static_cast<std::uint32_t>(extraction.level_thresholds.size());
   msg->scale_factor = static_cast<float>(params.orb.scale_factor);
   msg->extract_ms = static_cast<float>(extraction.timings.extractMs());
+  msg->judge_ms = static_cast<float>(extraction.timings.judge_ms);
+  msg->total_ms = static_cast<float>(extraction.timings.totalMs());
   return msg;
 }
 

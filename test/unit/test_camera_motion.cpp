@@ -280,6 +280,34 @@ TEST(CameraMotion, ExtractorsFollowTheJudgment) {
   orb->detectAndCompute(second, cv::noArray(), keypoints, descriptors);
   EXPECT_EQ(cv::norm(descriptors, s.descriptors, cv::NORM_INF), 0.0);
 
+  // The stream's call judges, then extracts: the same as the two steps, with the judgment timed as
+  // a stage of its own, part of the call's total; a mode that does not judge leaves the stream alone.
+  CameraMotion motion;
+  ExtractOptions options;
+  Extraction streamed;
+  automatic.extract(first, motion, options, streamed);
+  EXPECT_FALSE(options.camera_moving);
+  automatic.extract(second, motion, options, streamed);
+  EXPECT_TRUE(options.camera_moving && streamed.camera_moving);
+  EXPECT_EQ(cv::norm(streamed.descriptors, m.descriptors, cv::NORM_INF), 0.0);
+  EXPECT_GT(streamed.timings.judge_ms, 0.0);
+  EXPECT_DOUBLE_EQ(streamed.timings.totalMs(), streamed.timings.convert_ms + streamed.timings.judge_ms +
+                                                   streamed.timings.enhance_ms + streamed.timings.extract_ms);
+  const OrbExtractor still_only(Params::baseline());
+  CameraMotion unused;
+  still_only.extract(first, unused, options, streamed);
+  still_only.extract(second, unused, options, streamed);
+  EXPECT_FALSE(options.camera_moving);
+  EXPECT_EQ(unused.shift(), 0.0);  // never fed: no frame judged
+  // The adapter's times cover its whole call: a colour image's conversion too.
+  cv::Mat colour;
+  cv::cvtColor(second, colour, cv::COLOR_GRAY2BGR);
+  orb->clear();
+  orb->detectAndCompute(colour, cv::noArray(), keypoints, descriptors);
+  EXPECT_GT(orb->timings().convert_ms, 0.0);
+  EXPECT_GT(orb->timings().judge_ms, 0.0);
+  EXPECT_GE(orb->timings().totalMs(), orb->timings().enhance_ms + orb->timings().extract_ms);
+
   // ORB-SLAM's extractor, settings as the default mode's: the same.
   OrbSlamExtractor slam(1000, 1.2f, 8, 20, 7, Params());
   std::vector<int> lapping;

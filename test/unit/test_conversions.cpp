@@ -107,6 +107,9 @@ TEST(ToMessage, CarriesEveryField) {
   e.cell_thresholds = (cv::Mat_<int>(2, 2) << 7, 8, 9, 10);
   e.level_thresholds = {e.cell_thresholds, e.cell_thresholds, e.cell_thresholds};
   e.timings.extract_ms = 2.5;
+  e.timings.convert_ms = 0.25;
+  e.timings.judge_ms = 0.5;
+  e.timings.enhance_ms = 1.0;
   std_msgs::Header header;
   header.stamp = ros::Time(5, 6);
   header.frame_id = "cam0";
@@ -131,4 +134,6 @@ TEST(ToMessage, CarriesEveryField) {
   EXPECT_EQ(m->n_levels, 3u);
   EXPECT_FLOAT_EQ(m->scale_factor, 1.2f);
   EXPECT_FLOAT_EQ(m->extract_ms, 2.5f);
+  EXPECT_FLOAT_EQ(m->judge_ms, 0.5f);
+  EXPECT_FLOAT_EQ(m->total_ms, 4.25f);  // conversion, judgment, enhancement and extraction
 }
