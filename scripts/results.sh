@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) from the shared data: the
-# equal-budget comparison (lighting pairs and EuRoC), the paper's evaluation (Tables 2-4,
-# Figures 6-7), the benchmarks, the nodelet chain's figures and the aarch64 test run.
+# equal-budget comparison (lighting pairs and EuRoC), real camera motion (the EuRoC moving sequence
+# and the KITTI driving excerpts), the paper's evaluation (Tables 2-4, Figures 6-7), the
+# benchmarks, the nodelet chain's figures and the aarch64 test run.
 #
 #   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR [MOVING_SEQUENCE_DIR]]]
 #   defaults ../shared/data/euroc/V1_01_easy_micro, ../shared/data/lighting and
@@ -44,6 +45,18 @@ for run in "1000 3" "500 6" "2000 6"; do
   SEQUENCES+=("$COMPARE/sequence_$budget")
 done
 
+# Driving: the KITTI odometry excerpts beside the moving sequence (monocular, every frame, every
+# budget; about 10 minutes each per budget here).
+DRIVING=()
+for excerpt in "$ROOT"/../shared/data/kitti/*/; do
+  [ -f "$excerpt/poses.txt" ] || continue
+  name=$(basename "$excerpt")
+  echo "results: driving on $name"
+  "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --sequence "$excerpt" --budgets 500,1000,2000 \
+    --output "$COMPARE/driving_$name"
+  DRIVING+=("$name")
+done
+
 echo "results: evaluation on $EUROC"
 "$ROOT/devel/lib/enhanced_orb/enhanced_orb_compare" --paper --euroc "$EUROC" --output "$OUT" --every 19
 
@@ -84,5 +97,8 @@ python3 "$ROOT/bench/pipeline_benchmark.py" --bag "$BAG" --output "$OUT/pipeline
 python3 "$ROOT/scripts/report.py" paper "$OUT"
 python3 "$ROOT/scripts/report.py" compare "$COMPARE" "$ROOT/docs/RESULTS.md"
 python3 "$ROOT/scripts/report.py" sequence "${SEQUENCES[@]}" "$ROOT/docs/RESULTS.md"
+for name in "${DRIVING[@]}"; do
+  python3 "$ROOT/scripts/report.py" sequence "$COMPARE/driving_$name" --section "driving_$name" "$ROOT/docs/RESULTS.md"
+done
 python3 "$ROOT/scripts/report.py" aarch64 "$ROOT/build_aarch64/test_results" "$ROOT/docs/RESULTS.md"
 echo "results: done in $(( $(date +%s) - start )) s"

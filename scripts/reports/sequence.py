@@ -2,9 +2,11 @@
 the real-camera-motion section of docs/RESULTS.md (between the sequence:begin and sequence:end
 markers) and its plot docs/results/sequence.png.
 
-    python3 scripts/report.py sequence RESULTS_DIR [RESULTS_DIR ...] [docs/RESULTS.md]
+    python3 scripts/report.py sequence RESULTS_DIR [RESULTS_DIR ...] [--section NAME] [docs/RESULTS.md]
 
-Several folders (runs of the same frames under other labels) are read as one.
+Several folders (runs of the same frames under other labels) are read as one. --section NAME
+writes a monocular driving sequence (a KITTI odometry excerpt) to the section NAME and its plot to
+docs/results/NAME.png instead.
 """
 import collections
 import csv
@@ -29,7 +31,7 @@ LIGHT = {
     "lights_out": "x0.1 from the middle on, auto gain catching up over ~10 frames",
     "flicker": "alternate frames x1 and x0.5",
     "lamp": "dark room (x0.03), lamp on the camera: bright centre",
-    "dip": "x0.02 over frames 100-250, auto gain",
+    "dip": "x0.02 from a third of the sequence to five sixths (frames 100-250 of 300), auto gain",
 }
 
 INTRO = """## Real camera motion: relative pose and stereo tracking in every light
@@ -108,6 +110,20 @@ too (0.554 against 0.593).
 """
 
 
+DRIVING_INTRO = """## Driving: relative pose on KITTI `{sequence}` in every light
+
+`enhanced_orb_compare --sequence ../shared/data/kitti/{sequence}` (in `bash scripts/results.sh`):
+{frames} frames of a KITTI odometry excerpt (a car's left camera, 10 Hz, about 1 m between frames;
+`../shared/data/kitti/README.md`), every method on the same frames, each frame degraded once per
+light condition through the same sensor model as above; relative pose between frames t and t + g
+(g = {gaps}) measured as above, from every frame. Monocular: no stereo tracking. The camera's
+frames are one stream, judged in order (a car driving is judged moving within its first second,
+`test_camera_motion`).
+
+Light conditions: {conditions}.
+"""
+
+
 def fmt_ratio(value, best):
     if best <= 0:
         return "-"
@@ -127,6 +143,11 @@ def main(args):
         sys.exit(__doc__)
     doc = args.pop() if len(args) > 1 and args[-1].endswith(".md") else \
         os.path.join(os.path.dirname(__file__), "..", "..", "docs", "RESULTS.md")
+    section = "sequence"
+    if "--section" in args:
+        i = args.index("--section")
+        section = args[i + 1]
+        del args[i:i + 2]
     pose_rows, track_rows = [], []
     for src in args:
         pose_rows += list(csv.DictReader(open(os.path.join(src, "sequence_pose.csv"))))
@@ -160,7 +181,8 @@ def main(args):
     conditions = [c for c in CONDITIONS if c in {r["condition"] for r in pose_rows}]
     budgets = sorted({int(r["budget"]) for r in pose_rows})
     gaps = sorted({int(r["gap"]) for r in pose_rows})
-    frames = len({r["frame"] for r in track_rows}) + 1 if track_rows else "the"
+    frames = len({r["frame"] for r in track_rows}) + 1 if track_rows else \
+        max(int(r["frame"]) + int(r["gap"]) for r in pose_rows) + 1
     rivals = [m for m in RIVALS if m in methods]
 
     def a(cond, m, b, thr=10.0, gap=None):
@@ -175,12 +197,14 @@ def main(args):
         return len([r for r in pose_rows if r["method"] == "default" and r["condition"] == pose_rows[0]["condition"]
                     and int(r["budget"]) == b])
 
-    out = [INTRO.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)),
+    intro = INTRO if section == "sequence" else DRIVING_INTRO
+    out = [intro.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)),
                         conditions="; ".join("`%s` %s" % (c, LIGHT.get(c, "")) for c in conditions))]
 
     # The verdict at every budget: the default mode against the best rival, both measures.
     for b in budgets:
-        out.append("### %d features: pose AUC@10 and frames tracked (%d pairs)\n" % (b, pairs(b)))
+        out.append("### %d features: pose AUC@10%s (%d pairs)\n"
+                   % (b, " and frames tracked" if track_rows else "", pairs(b)))
         header = ["light"] + methods + ["%s / best rival" % t for t in tested]
         rows = []
         for c in conditions:
@@ -213,10 +237,11 @@ def main(args):
         out.append(table(["light"] + methods, rows) + "\n")
 
     plot(conditions, methods, mid, a, trk if track_rows else None,
-         os.path.join(os.path.dirname(os.path.abspath(doc)), "results", "sequence.png"))
-    out.append("![Pose AUC@10 and frames tracked per light condition at %d features](results/sequence.png)\n" % mid)
+         os.path.join(os.path.dirname(os.path.abspath(doc)), "results", section + ".png"))
+    out.append("![Pose AUC@10%s per light condition at %d features](results/%s.png)\n"
+               % (" and frames tracked" if track_rows else "", mid, section))
 
-    write_section(doc, "sequence", "\n".join(out))
+    write_section(doc, section, "\n".join(out))
     print("report sequence: wrote", doc)
 
 
