@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/core/hal/hal.hpp>
 #include <opencv2/imgproc.hpp>
@@ -62,20 +63,27 @@ CameraMotion::Correlation CameraMotion::correlate(const cv::Mat& first, const cv
   // its 5 x 5 (the correlation wraps around).
   cv::Scalar mean, deviation;
   cv::meanStdDev(correlation_, mean, deviation);
-  float second_highest = 0.0f;
-  for (int y = 0; y < h; ++y) {
-    const int dy = std::min((y - peak.y + h) % h, (peak.y - y + h) % h);
-    const float* row = correlation_.ptr<float>(y);
-    for (int x = 0; x < w; ++x) {
-      const int dx = std::min((x - peak.x + w) % w, (peak.x - x + w) % w);
-      if (dy > 2 || dx > 2) {
-        second_highest = std::max(second_highest, row[x]);
-      }
+  // The 5 x 5 set aside (its values kept, then put back in reverse order) for a second minMaxLoc.
+  float kept[25];
+  int k = 0;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      float& v = correlation_.at<float>((peak.y + dy + h) % h, (peak.x + dx + w) % w);
+      kept[k++] = v;
+      v = -std::numeric_limits<float>::max();
     }
   }
+  double outside = 0.0;
+  cv::minMaxLoc(correlation_, nullptr, &outside);
+  for (int dy = 2; dy >= -2; --dy) {
+    for (int dx = 2; dx >= -2; --dx) {
+      correlation_.at<float>((peak.y + dy + h) % h, (peak.x + dx + w) % w) = kept[--k];
+    }
+  }
+  const double second_highest = std::max(0.0, outside);
   Correlation result;
   result.strength = deviation[0] > 0.0 ? peak_value / deviation[0] : 0.0;
-  result.peak_ratio = second_highest > 0.0f ? peak_value / second_highest : 0.0;
+  result.peak_ratio = second_highest > 0.0 ? peak_value / second_highest : 0.0;
   // The centroid of the 3 x 3 around the peak.
   double sum = 0.0, sx = 0.0, sy = 0.0;
   for (int dy = -1; dy <= 1; ++dy) {
@@ -142,7 +150,9 @@ bool CameraMotion::update(const cv::Mat& gray) {
   // light or the view has changed too much since, as driving forward zooms it) gives no shift to
   // trust: this frame replaces it, with its shift from the last frame. (Carrying the shifts over
   // such a chain of references instead adds up their errors: a tripod's exposure bracket, 9 stops
-  // from dark to bright, then drifts by more than a moved frame's shift.)
+  // from dark to bright, then drifts by more than a moved frame's shift.) The last frame decides
+  // a new scene even where the reference seems to match: two dark frames of different scenes, a
+  // few bright blobs each, can correlate in one clear peak.
   const Correlation last = correlate(previous_, spectrum_);
   new_scene_ = !last.related();
   cv::Point2d shift;
