@@ -57,17 +57,20 @@ class PipelineConsistency(unittest.TestCase):
 
     def test_every_message_is_consistent(self):
         self.wait_for_messages()
-        # The input images of the outputs come to this node on a topic of their own: wait for them.
+        # The messages so far (more keep coming while the bag loops); their input images come to
+        # this node on a topic of their own: wait for those.
+        outputs = {name: list(msgs) for name, msgs in self.outputs.items()}
+        annotated = list(self.annotated)
         deadline = rospy.Time.now() + rospy.Duration(60)
         while not rospy.is_shutdown() and rospy.Time.now() < deadline:
-            unseen = [m.header.stamp for msgs in list(self.outputs.values()) + [self.annotated] for m in msgs
+            unseen = [m.header.stamp for msgs in list(outputs.values()) + [annotated] for m in msgs
                       if m.header.stamp not in self.images]
             if not unseen:
                 break
             rospy.sleep(0.1)
-        improved = {m.header.stamp: m for m in self.outputs["/cam0/keypoints"]}
-        baseline = {m.header.stamp: m for m in self.outputs["/cam0/baseline/keypoints"]}
-        paper = {m.header.stamp: m for m in self.outputs["/cam0/paper/keypoints"]}
+        improved = {m.header.stamp: m for m in outputs["/cam0/keypoints"]}
+        baseline = {m.header.stamp: m for m in outputs["/cam0/baseline/keypoints"]}
+        paper = {m.header.stamp: m for m in outputs["/cam0/paper/keypoints"]}
         for msg in list(improved.values()) + list(paper.values()):
             self.check_common(msg)
             self.assertEqual(msg.threshold_mode, "adaptive")
@@ -81,7 +84,7 @@ class PipelineConsistency(unittest.TestCase):
             self.assertEqual(msg.threshold_mode, "fixed")
             self.assertTrue(all(t == 20 for t in msg.cell_thresholds), msg.cell_thresholds)
             self.assertLessEqual(len(msg.keypoints), BUDGET)
-        for msg in list(self.annotated):
+        for msg in annotated:
             self.assertIn(msg.header.stamp, self.images, "annotated image of no input image")
             self.assertEqual((msg.width, msg.height), self.images[msg.header.stamp])
             self.assertEqual(msg.encoding, "bgr8")
