@@ -66,6 +66,10 @@ struct EnhanceParams {
   double blur_sigma = 1.0;      // eq 8: Gaussian sigma, [0.1, 10]
   double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode auto), [0, 1]
   GammaMode gamma_mode = GammaMode::kAlways;
+  // gamma_mode while the camera moves (OrbParams::camera_motion): a moving camera's consecutive
+  // frames share their exposure, so their descriptors need no tone normalisation, and on a dim
+  // frame the curve mostly stretches the noise of the dark tones (docs/RESULTS.md, "Driving").
+  GammaMode moving_gamma_mode = GammaMode::kAuto;
   // Threads one enhancement uses (horizontal bands, through cv::parallel_for_); the result is the
   // same for any count. [1, 64]
   int threads = 1;
@@ -130,8 +134,8 @@ struct Params {
   // Whether a frame gets the moving camera's selection: camera_motion moving, or auto and the
   // frame's camera judged moving.
   bool movingSelection(bool judged_moving) const;
-  // The parameters a frame is extracted with: these, with threshold_scale and noise_floor the
-  // moving_ ones where movingSelection(judged_moving).
+  // The parameters a frame is enhanced and extracted with: these, with gamma_mode,
+  // threshold_scale and noise_floor the moving_ ones where movingSelection(judged_moving).
   Params forFrame(bool judged_moving) const;
 };
 

@@ -3,6 +3,7 @@
 #define ENHANCED_ORB_SELECTION_H
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -37,8 +38,12 @@ struct SelectionWorkspace {
 // could not use; its candidates are its corners scoring at least orb.noise_floor x `noise` (and at
 // least its share's strongest) when noise_floor > 0, else its candidate_ratio x share strongest
 // (every corner when candidate_ratio is 0); the share is spread over them as selectSpread() does.
+// `complete`, where given, is for levels whose corners were found at the noise floor only (every
+// corner scoring at least noise_floor x `noise`): called with a level that has fewer of them than
+// its share, it puts every corner of that level in levels[level], as the selection then needs them.
 void selectByBudget(const OrbParams& orb, double noise, const std::vector<cv::Size>& sizes,
-                    std::vector<std::vector<cv::KeyPoint>>& levels, SelectionWorkspace& ws);
+                    std::vector<std::vector<cv::KeyPoint>>& levels, SelectionWorkspace& ws,
+                    const std::function<void(size_t level)>& complete = nullptr);
 
 }  // namespace enhanced_orb
 

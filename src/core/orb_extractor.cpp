@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -24,6 +25,8 @@ struct OrbExtractor::Workspace {
     CornerWorkspace corners;
     SmoothingBuffers smoothing;
     cv::Mat smoothed;
+    bool smoothed_ready = false;  // `smoothed` is this frame's
+    cv::Mat raised;               // the cell thresholds raised to the noise floor
     StageTimings timings;
   };
   EnhanceWorkspace enhancement;
@@ -142,10 +145,38 @@ void applyMask(const cv::Mat& mask, float scale, std::vector<cv::KeyPoint>& corn
                 corners.end());
 }
 
-// Per level: the level itself, its cell thresholds (adaptive_threshold.h, or the fixed one), its
-// corners (those the mask allows) and cv::ORB's smoothing for the descriptors. An empty image has
-// one empty level: its thresholds are the grid's, its corners none.
-void detectLevels(const Params& params, const cv::Mat& mask, OrbExtractor::Workspace& ws, Extraction& out) {
+// The corners of `level` at its cell thresholds, each raised to at least `least` (0: as they are),
+// those the mask allows; and cv::ORB's smoothing for the descriptors once the level has corners.
+void detectLevel(const Params& params, const cv::Mat& mask, int level, int least, OrbExtractor::Workspace& ws,
+                 Extraction& out) {
+  OrbExtractor::Workspace::Level& l = ws.levels[level];
+  const cv::Mat& image = ws.pyramid.built(level);
+  const cv::Mat& thresholds = out.level_thresholds[level];
+  const cv::Mat* used = &thresholds;
+  if (least > 0) {
+    l.raised.create(thresholds.size(), CV_32S);
+    for (int i = 0; i < static_cast<int>(thresholds.total()); ++i) {
+      l.raised.ptr<int>()[i] = std::max(thresholds.ptr<int>()[i], least);
+    }
+    used = &l.raised;
+  }
+  Stopwatch clock;
+  detectCorners(image, *used, l.corners, ws.keypoints[level]);
+  if (!mask.empty()) {
+    applyMask(mask, levelScale(params.orb.scale_factor, level), ws.keypoints[level]);
+  }
+  l.timings.fast_ms += clock.lap();
+  if (!ws.keypoints[level].empty() && !l.smoothed_ready) {
+    smoothForDescription(image, l.smoothing, l.smoothed);
+    l.smoothed_ready = true;
+  }
+  l.timings.descriptor_ms += clock.lap();
+}
+
+// Per level: the level itself, its cell thresholds (adaptive_threshold.h, or the fixed one) and
+// detectLevel() at `least`. An empty image has one empty level: its thresholds are the grid's, its
+// corners none.
+void detectLevels(const Params& params, const cv::Mat& mask, int least, OrbExtractor::Workspace& ws, Extraction& out) {
   const int n_levels = ws.pyramid.count();
   ws.levels.resize(std::max(ws.levels.size(), static_cast<size_t>(n_levels)));
   ws.keypoints.resize(std::max(ws.keypoints.size(), static_cast<size_t>(n_levels)));
@@ -157,6 +188,7 @@ void detectLevels(const Params& params, const cv::Mat& mask, OrbExtractor::Works
   forEachLevel(n_levels, params.orb.threads, [&](int level) {
     OrbExtractor::Workspace::Level& l = ws.levels[level];
     l.timings = StageTimings();
+    l.smoothed_ready = false;
     const cv::Mat& image = ws.pyramid.level(level, l.timings.pyramid_ms);
     Stopwatch clock;
     cv::Mat& thresholds = out.level_thresholds[level];
@@ -167,15 +199,7 @@ void detectLevels(const Params& params, const cv::Mat& mask, OrbExtractor::Works
       thresholds.setTo(cv::Scalar(params.orb.fast_threshold));
     }
     l.timings.threshold_ms = clock.lap();
-    detectCorners(image, thresholds, l.corners, ws.keypoints[level]);
-    if (!mask.empty()) {
-      applyMask(mask, levelScale(params.orb.scale_factor, level), ws.keypoints[level]);
-    }
-    l.timings.fast_ms = clock.lap();
-    if (!ws.keypoints[level].empty()) {
-      smoothForDescription(image, l.smoothing, l.smoothed);
-    }
-    l.timings.descriptor_ms = clock.lap();
+    detectLevel(params, mask, level, least, ws, out);
   });
   out.cell_thresholds = out.level_thresholds.front();
 }
@@ -278,17 +302,29 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
   out.keypoints.clear();
   const auto ws = lease();
   Stopwatch clock;
-  enhanceInto(gray, params_, ws->enhancement, out);
+  enhanceInto(gray, params, ws->enhancement, out);
   out.timings.enhance_ms = clock.lap();
   Stopwatch wall;
+  // With a noise floor, each level's budget is spread over its corners scoring at least the floor:
+  // they are found with every cell's FAST threshold raised to it (FAST keeps a score above its
+  // threshold), which gives the same corners with the same scores, since a neighbour that would
+  // suppress one of them scores higher still. A level with fewer than its budget above the floor
+  // is searched again at its own thresholds (selectByBudget's `complete`).
+  const bool by_floor = orb.max_features > 0 && orb.noise_floor > 0.0;
+  out.noise = by_floor ? estimateNoise(out.image) : 0.0;
+  const int least = by_floor ? std::clamp(static_cast<int>(std::ceil(orb.noise_floor * out.noise)) - 1, 0, 255) : 0;
+  double select_ms = clock.lap();
   ws->pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
-  detectLevels(params, options.mask, *ws, out);
+  detectLevels(params, options.mask, least, *ws, out);
   clock.lap();
-  out.noise = orb.max_features > 0 && orb.noise_floor > 0.0 ? estimateNoise(out.image) : 0.0;
   if (orb.max_features > 0) {
-    selectByBudget(orb, out.noise, ws->pyramid.sizes(), ws->keypoints, ws->selection);
+    // One reference captured: std::function keeps it without a heap allocation.
+    const auto redetect = [&](int level) { detectLevel(params, options.mask, level, 0, *ws, out); };
+    const auto complete = [&redetect](size_t level) { redetect(static_cast<int>(level)); };
+    selectByBudget(orb, out.noise, ws->pyramid.sizes(), ws->keypoints, ws->selection,
+                   least > 0 ? std::function<void(size_t)>(complete) : nullptr);
   }
-  out.timings.select_ms = clock.lap();
+  out.timings.select_ms = select_ms + clock.lap();
   describeLevels(orb, *ws, out);
   keepPyramid(options.keep_pyramid, ws->pyramid, out);
   addLevelTimings(*ws, ws->pyramid.count(), out.timings);

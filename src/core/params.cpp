@@ -54,6 +54,7 @@ bool Params::movingSelection(bool judged_moving) const {
 Params Params::forFrame(bool judged_moving) const {
   Params p = *this;
   if (movingSelection(judged_moving)) {
+    p.enhance.gamma_mode = enhance.moving_gamma_mode;
     p.threshold.threshold_scale = threshold.moving_threshold_scale;
     p.orb.noise_floor = orb.moving_noise_floor;
   }
@@ -137,9 +138,17 @@ struct Field {
 const char* enhancementOff(const Params& p) {
   return p.enhance_enabled ? nullptr : "the enhancement is off";
 }
+// Whether a selection in use (camera_motion) runs the tone curve with gamma_mode `mode`.
+bool gammaModeInUse(const Params& p, GammaMode mode) {
+  return (p.orb.camera_motion != MotionMode::kMoving && p.enhance.gamma_mode == mode) ||
+         (p.orb.camera_motion != MotionMode::kStill && p.enhance.moving_gamma_mode == mode);
+}
 const char* toneCurveOff(const Params& p) {
   const char* why = enhancementOff(p);
-  return why ? why : p.enhance.gamma_mode == GammaMode::kNever ? "the tone curve is off (gamma_mode never)" : nullptr;
+  return why ? why
+         : !gammaModeInUse(p, GammaMode::kAuto) && !gammaModeInUse(p, GammaMode::kAlways)
+             ? "the tone curve is off (gamma_mode, and moving_gamma_mode while the camera moves, never)"
+             : nullptr;
 }
 const char* alphaUnused(const Params& p) {
   const char* why = toneCurveOff(p);
@@ -147,7 +156,9 @@ const char* alphaUnused(const Params& p) {
 }
 const char* qualityTestUnused(const Params& p) {
   const char* why = enhancementOff(p);
-  return why ? why : p.enhance.gamma_mode != GammaMode::kAuto ? "only used when gamma_mode is auto" : nullptr;
+  return why                                    ? why
+         : !gammaModeInUse(p, GammaMode::kAuto) ? "only used when gamma_mode or moving_gamma_mode is auto"
+                                                : nullptr;
 }
 const char* adaptiveOnly(const Params& p) {
   return p.orb.threshold_mode == ThresholdMode::kFixed ? "only used when threshold_mode is adaptive" : nullptr;
@@ -168,6 +179,12 @@ const char* movingUnused(const Params& p) {
 // The first of two reasons that applies.
 const char* either(const char* first, const char* second) {
   return first ? first : second;
+}
+const char* gammaModeUnused(const Params& p) {
+  return either(enhancementOff(p), stillUnused(p));
+}
+const char* movingGammaModeUnused(const Params& p) {
+  return either(enhancementOff(p), movingUnused(p));
 }
 const char* thresholdScaleUnused(const Params& p) {
   return either(adaptiveOnly(p), stillUnused(p));
@@ -266,7 +283,11 @@ const std::vector<Field>& fields() {
           "quality test: the tone curve runs when lambda exceeds it (gamma_mode auto)", qualityTestUnused),
       named(
           "gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode,
-          "auto|always|never", "when the tone curve runs: by the quality test, always, never", enhancementOff),
+          "auto|always|never", "when the tone curve runs: by the quality test, always, never", gammaModeUnused),
+      named(
+          "moving_gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.moving_gamma_mode; },
+          parseGammaMode, "auto|always|never", "gamma_mode while the camera moves (camera_motion)",
+          movingGammaModeUnused),
       number(
           "enhance_threads", Group::kEnhance, [](Params& p) -> int& { return p.enhance.threads; }, 1, 64,
           "threads of one enhancement (the same result for any count)", enhancementOff),

@@ -186,7 +186,8 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
 }
 
 void selectByBudget(const OrbParams& orb, double noise, const std::vector<cv::Size>& sizes,
-                    std::vector<std::vector<cv::KeyPoint>>& levels, SelectionWorkspace& ws) {
+                    std::vector<std::vector<cv::KeyPoint>>& levels, SelectionWorkspace& ws,
+                    const std::function<void(size_t level)>& complete) {
   levelBudgets(orb.max_features, orb.n_levels, orb.scale_factor, ws.budgets);
   const double floor = orb.noise_floor * noise;
   int carry = 0;
@@ -194,6 +195,9 @@ void selectByBudget(const OrbParams& orb, double noise, const std::vector<cv::Si
     std::vector<cv::KeyPoint>& kps = levels[level];
     const int budget = ws.budgets[level] + carry;
     if (orb.noise_floor > 0.0) {
+      if (complete && static_cast<int>(kps.size()) < budget) {
+        complete(level);
+      }
       // The corners that stand noise_floor x the noise above it, and at least the budget's
       // strongest: in a clean frame every real corner, in a noisy one the strongest only.
       const auto above =

@@ -62,6 +62,8 @@ inline const std::vector<ConfigField<EnhanceConfig>>& enhanceConfigFields() {
       {"blur_sigma", &C::blur_sigma},
       {"std_threshold", &C::std_threshold},
       {"gamma_mode", &C::gamma_mode},
+      {"moving_gamma_mode", &C::moving_gamma_mode},
+      {"camera_motion", &C::camera_motion},
       {"enhance_threads", &C::enhance_threads},
   };
   return fields;

@@ -1,4 +1,6 @@
-// enhanced_orb/EnhanceNodelet: image -> image_enhanced (mono8, same header), section III-A.
+// enhanced_orb/EnhanceNodelet: image -> image_enhanced (mono8, same header), section III-A. With
+// camera_motion auto it judges, as ExtractNodelet does, whether the camera moves: a moving camera's
+// frames are enhanced with moving_gamma_mode (Params::forFrame).
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -36,18 +38,21 @@ private:
 
   void apply(const EnhanceConfig& /*config*/, const Params& params) override {
     std::lock_guard<std::mutex> lock(params_mutex_);
-    params_ = params.enhance;
-    enabled_ = params.enhance_enabled;
+    params_ = params;
   }
 
   void process(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& gray, double /*convert_ms*/) override {
-    EnhanceParams params;
-    bool enabled = true;
+    Params all;
     {
       std::lock_guard<std::mutex> lock(params_mutex_);
-      params = params_;
-      enabled = enabled_;
+      all = params_;
     }
+    const bool enabled = all.enhance_enabled;
+    // Judged only where the two selections enhance differently.
+    const bool judge = enabled && all.orb.camera_motion == MotionMode::kAuto &&
+                       all.enhance.moving_gamma_mode != all.enhance.gamma_mode;
+    const bool camera_moving = all.movingSelection(judgeMotion(msg->header.stamp, gray, judge));
+    const EnhanceParams params = all.forFrame(camera_moving).enhance;
     if (!enabled && msg->encoding == sensor_msgs::image_encodings::MONO8) {
       pub_.publish(msg);  // nothing to do: hand on the very same message
       publishAddress(address_pub_, *msg);
@@ -71,13 +76,14 @@ private:
       gray.copyTo(view);
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    publishStatus(msg->header, gray, params, enabled, result, ms);  // first: the extractor looks it up by stamp
+    publishStatus(msg->header, gray, params, enabled, camera_moving, result,
+                  ms);  // first: the extractor looks it up by stamp
     pub_.publish(out);
     publishAddress(address_pub_, *out);
   }
 
   void publishStatus(const std_msgs::Header& header, const cv::Mat& gray, const EnhanceParams& params, bool enabled,
-                     const EnhanceResult& result, double ms) {
+                     bool camera_moving, const EnhanceResult& result, double ms) {
     auto status = boost::make_shared<EnhanceStatus>();
     status->header = header;
     status->lambda = static_cast<float>(enabled ? result.lambda : imageLambda(gray));
@@ -86,6 +92,7 @@ private:
     status->inverted = result.inverted;
     status->tone_curve = toString(params.tone_curve);
     status->gamma_mode = enabled ? toString(params.gamma_mode) : "never";
+    status->camera_moving = camera_moving;
     status->enhance_ms = static_cast<float>(ms);
     {
       std::lock_guard<std::mutex> lock(status_mutex_);
@@ -100,6 +107,7 @@ private:
     status.add("last mean gray", last_status_.mean_gray);
     status.add("tone curve", last_status_.tone_curve + " (gamma_mode " + last_status_.gamma_mode + ")");
     status.add("tone curve applied to the last image", static_cast<bool>(last_status_.poor_quality));
+    status.add("last image judged moving", static_cast<bool>(last_status_.camera_moving));
     status.add("last image inverted", static_cast<bool>(last_status_.inverted));
   }
 
@@ -109,8 +117,7 @@ private:
   EnhanceStatus last_status_;
   ros::Publisher address_pub_;
   std::mutex params_mutex_;
-  EnhanceParams params_;
-  bool enabled_ = true;
+  Params params_;
   std::mutex workspace_mutex_;
   EnhanceWorkspace workspace_;  // the enhancement's buffers, reused frame after frame
 };

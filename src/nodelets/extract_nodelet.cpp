@@ -14,7 +14,6 @@
 
 #include "enhanced_orb/EnhanceStatus.h"
 #include "enhanced_orb/ExtractConfig.h"
-#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/draw.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "enhanced_orb/ros/conversions.h"
@@ -110,36 +109,6 @@ private:
     }
   }
 
-  // Whether the camera is judged moving at this image (camera_motion auto: `judge`), the images
-  // taken in order as one stream. A stamp before the last one (a bag played again) starts a new
-  // stream; each change of the judgment is logged, and a new scene (throttled).
-  bool judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge) {
-    std::lock_guard<std::mutex> lock(motion_mutex_);
-    if (!judge) {
-      motion_.reset();
-      return false;
-    }
-    if (stamp < last_stamp_) {
-      NODELET_INFO("image stamps went back (%.3f s after %.3f s): the camera's motion is judged anew", stamp.toSec(),
-                   last_stamp_.toSec());
-      motion_.reset();
-    }
-    last_stamp_ = stamp;
-    const bool was_moving = motion_.moving();
-    const bool moving = motion_.update(gray);
-    if (motion_.newScene()) {
-      NODELET_INFO_THROTTLE(5.0,
-                            "image unrelated to the last one (a new scene, or another camera): its shift is "
-                            "measured anew, and the camera stays judged %s",
-                            moving ? "moving" : "still");
-    }
-    if (moving != was_moving) {
-      NODELET_INFO("camera judged %s (shift %.1f px): the %s camera's selection from now on",
-                   moving ? "moving" : "still", motion_.shift(), moving ? "moving" : "still");
-    }
-    return moving;
-  }
-
   // The enhancement's status of the image with this stamp, when EnhanceNodelet sent one.
   EnhanceStatus::ConstPtr statusOf(const ros::Time& stamp) const {
     const std::vector<EnhanceStatus::ConstPtr> same = statuses_.getInterval(stamp, stamp);
@@ -154,9 +123,6 @@ private:
   image_transport::Publisher annotated_pub_;
   ros::Publisher address_pub_;
   std::mutex params_mutex_;
-  std::mutex motion_mutex_;
-  CameraMotion motion_;
-  ros::Time last_stamp_;
   std::shared_ptr<const OrbExtractor> extractor_ = std::make_shared<const OrbExtractor>(withoutEnhancement());
   DrawOptions draw_;
 };

@@ -200,6 +200,33 @@ void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   total_ms_ = max_ms_ = 0.0;
 }
 
+bool ImageNodelet::judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge) {
+  std::lock_guard<std::mutex> lock(motion_mutex_);
+  if (!judge) {
+    motion_.reset();
+    return false;
+  }
+  if (stamp < last_stamp_) {
+    NODELET_INFO("image stamps went back (%.3f s after %.3f s): the camera's motion is judged anew", stamp.toSec(),
+                 last_stamp_.toSec());
+    motion_.reset();
+  }
+  last_stamp_ = stamp;
+  const bool was_moving = motion_.moving();
+  const bool moving = motion_.update(gray);
+  if (motion_.newScene()) {
+    NODELET_INFO_THROTTLE(5.0,
+                          "image unrelated to the last one (a new scene, or another camera): its shift is "
+                          "measured anew, and the camera stays judged %s",
+                          moving ? "moving" : "still");
+  }
+  if (moving != was_moving) {
+    NODELET_INFO("camera judged %s (shift %.1f px): the %s camera's settings from now on", moving ? "moving" : "still",
+                 motion_.shift(), moving ? "moving" : "still");
+  }
+  return moving;
+}
+
 void ImageNodelet::warnInactive(const Params& params, const std::map<std::string, std::string>& values) {
   const bool first = last_values_.empty();
   for (const std::string& inactive : inactiveParameters(params)) {

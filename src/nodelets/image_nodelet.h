@@ -19,6 +19,7 @@
 #include <sensor_msgs/Image.h>
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/params.h"
 
 namespace enhanced_orb {
@@ -64,6 +65,11 @@ protected:
   // Sets the private parameter `name` from text as a value of dynamic_reconfigure's `type`.
   void setTyped(const std::string& name, const std::string& type, const std::string& text);
 
+  // Whether the camera is judged moving at this image (camera_motion auto: `judge`), the images
+  // taken in order as one stream (CameraMotion). A stamp before the last one (a bag played again)
+  // starts a new stream; each change of the judgment is logged, and a new scene (throttled).
+  bool judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge);
+
   image_transport::ImageTransport& transport() { return *it_; }
   // ~queue_size: of the input subscription and of every output, so that a subscriber in another
   // process that reads in bursts loses nothing the nodelet could keep.
@@ -89,6 +95,10 @@ private:
   bool debug_addresses_ = false;
 
   std::map<std::string, std::string> last_values_;
+
+  std::mutex motion_mutex_;
+  CameraMotion motion_;
+  ros::Time last_stamp_;
 
   std::mutex log_mutex_;
   std::map<std::string, ros::WallTime> last_warning_;

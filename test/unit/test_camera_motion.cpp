@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "enhanced_orb/camera_motion.h"
+#include "enhanced_orb/enhance.h"
 #include "enhanced_orb/evaluation/sequence.h"
 #include "enhanced_orb/feature2d.h"
 #include "enhanced_orb/orb_extractor.h"
@@ -314,6 +315,43 @@ TEST(CameraMotion, ExtractorsFollowTheJudgment) {
   slam(first, cv::noArray(), keypoints, descriptors, lapping);
   slam(second, cv::noArray(), keypoints, descriptors, lapping);
   EXPECT_EQ(keypoints.size(), m.keypoints.size());
+}
+
+// A moving camera's frame is enhanced with moving_gamma_mode (auto: the paper's quality test), a
+// still camera's with gamma_mode (always): a dim, flat frame gets the tone curve only when still,
+// a contrasty one both ways.
+TEST(CameraMotion, AMovingCamerasFrameGetsTheToneCurveByTheQualityTest) {
+  cv::RNG rng(7);
+  const cv::Mat dim = underLight(view(scene(), 10, 10), 0.25, 1.5, rng);
+  ASSERT_LE(imageLambda(dim), Params().enhance.std_threshold);  // not poor by the paper's test
+  const OrbExtractor automatic;
+  ExtractOptions moving;
+  moving.camera_moving = true;
+  Extraction still_frame, moving_frame;
+  automatic.extract(dim, still_frame);
+  automatic.extract(dim, moving, moving_frame);
+  EXPECT_FALSE(still_frame.camera_moving);
+  EXPECT_TRUE(moving_frame.camera_moving);
+  // The still frame's tone curve stretched the dim tones; the moving frame's image is the filtered
+  // frame only, as with gamma_mode never.
+  EnhanceParams never = Params().enhance;
+  never.gamma_mode = GammaMode::kNever;
+  EXPECT_EQ(cv::norm(moving_frame.image, enhance(dim, never).image, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(still_frame.image, moving_frame.image, cv::NORM_INF), 20.0);
+  // moving_gamma_mode always: the same image as a still camera's.
+  Params always;
+  always.enhance.moving_gamma_mode = GammaMode::kAlways;
+  Extraction curved;
+  OrbExtractor(always).extract(dim, moving, curved);
+  EXPECT_EQ(cv::norm(curved.image, still_frame.image, cv::NORM_INF), 0.0);
+  // A contrasty frame is poor by the paper's test: the curve runs for a moving camera too.
+  cv::Mat contrasty;
+  view(scene(), 10, 10).convertTo(contrasty, CV_8U, 3.0, -250.0);
+  ASSERT_GT(imageLambda(contrasty), Params().enhance.std_threshold);
+  Extraction a, b;
+  automatic.extract(contrasty, a);
+  automatic.extract(contrasty, moving, b);
+  EXPECT_EQ(cv::norm(a.image, b.image, cv::NORM_INF), 0.0);
 }
 
 }  // namespace

@@ -494,6 +494,54 @@ TEST(Extractor, IdenticalToTheReferenceOnEveryEurocFrameInEveryModeAndBudget) {
   }
 }
 
+// The moving selection finds each level's corners at the noise floor and searches a level again
+// at its own thresholds when fewer than its share stand above it: on dark, noisy frames (where
+// levels fall back), on clean ones (where none does), at small and large budgets and with a mask,
+// it gives what the reference gives from every corner; with a mask, only corners the mask allows.
+TEST(Extractor, CornersFoundAtTheNoiseFloorAreTheReferences) {
+  const std::vector<cv::Mat> frames = eurocFrames(31);
+  REQUIRE_SHARED_DATA(!frames.empty(), "EuRoC frames under " + test::eurocDir());
+  cv::RNG rng(11);
+  std::vector<cv::Mat> images;
+  for (const cv::Mat& frame : frames) {
+    images.push_back(frame);
+    cv::Mat dark;
+    frame.convertTo(dark, CV_32F, 0.08 * 4.0);  // x0.08 light, gain 4
+    cv::Mat noise(frame.size(), CV_32F);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, 6.0);
+    dark += noise;
+    dark.convertTo(dark, CV_8U);
+    images.push_back(dark);
+  }
+  cv::Mat mask(frames.front().size(), CV_8UC1, cv::Scalar(255));
+  mask(cv::Rect(0, 0, mask.cols / 2, mask.rows / 3)).setTo(0);
+  for (int budget : {150, 1000, 4000}) {
+    for (double floor : {4.0, 8.0, 30.0}) {
+      Params params = Params::motion();
+      params.orb.max_features = budget;
+      params.orb.moving_noise_floor = floor;
+      const OrbExtractor extractor(params);
+      const Params frame_params = params.forFrame(false);
+      for (size_t i = 0; i < images.size(); ++i) {
+        const std::string what =
+            "budget " + std::to_string(budget) + ", floor " + std::to_string(floor) + ", image " + std::to_string(i);
+        expectSameExtraction(extractor.extract(images[i]), reference::extract(images[i], frame_params), what);
+        ExtractOptions masked;
+        masked.mask = mask;
+        Extraction ours;
+        extractor.extract(images[i], masked, ours);
+        ASSERT_FALSE(ours.keypoints.empty()) << what;
+        for (const cv::KeyPoint& kp : ours.keypoints) {
+          ASSERT_NE(mask.at<std::uint8_t>(std::min(cvRound(kp.pt.y), mask.rows - 1),
+                                          std::min(cvRound(kp.pt.x), mask.cols - 1)),
+                    0)
+              << what;
+        }
+      }
+    }
+  }
+}
+
 TEST(Extractor, IdenticalToTheReferenceAtEveryInstructionSet) {
   SimdScope scope;
   cv::setNumThreads(2);

@@ -229,7 +229,13 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
     return false;
   };
   const std::vector<std::string> def = inactiveParameters(Params());
-  EXPECT_TRUE(has(def, "std_threshold"));  // gamma_mode always
+  EXPECT_FALSE(has(def, "std_threshold"));  // gamma_mode always, but moving_gamma_mode auto
+  Params still_only;
+  still_only.orb.camera_motion = MotionMode::kStill;
+  EXPECT_TRUE(has(inactiveParameters(still_only), "std_threshold"));      // gamma_mode always
+  EXPECT_TRUE(has(inactiveParameters(still_only), "moving_gamma_mode"));  // never moving
+  EXPECT_TRUE(has(inactiveParameters(Params::motion()), "gamma_mode"));   // always moving
+  EXPECT_FALSE(has(inactiveParameters(Params::motion()), "std_threshold"));
   EXPECT_TRUE(has(def, "fast_threshold"));
   EXPECT_FALSE(has(def, "alpha"));
   EXPECT_FALSE(has(def, "tau"));
@@ -255,7 +261,7 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   off.enhance_enabled = false;
   const std::vector<std::string> none = inactiveParameters(off);
   for (const char* name : {"tone_curve", "alpha", "tau", "beta", "sharpening", "blur_ksize", "blur_sigma",
-                           "std_threshold", "gamma_mode", "enhance_threads"}) {
+                           "std_threshold", "gamma_mode", "moving_gamma_mode", "enhance_threads"}) {
     EXPECT_EQ(std::count_if(none.begin(), none.end(),
                             [&](const std::string& s) {
                               return s.rfind(std::string(name) + ": the enhancement is off", 0) == 0;
@@ -266,6 +272,8 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   EXPECT_FALSE(has(none, "enhance"));
   Params never;
   never.enhance.gamma_mode = GammaMode::kNever;
+  EXPECT_FALSE(has(inactiveParameters(never), "alpha"));  // a moving camera's frame may still get the curve
+  never.enhance.moving_gamma_mode = GammaMode::kNever;
   const std::vector<std::string> flat = inactiveParameters(never);
   EXPECT_TRUE(has(flat, "tone_curve") && has(flat, "alpha") && has(flat, "tau") && has(flat, "beta"));
   EXPECT_FALSE(has(flat, "sharpening"));
@@ -397,6 +405,8 @@ TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
   EXPECT_DOUBLE_EQ(p.forFrame(false).orb.noise_floor, 0.0);
   EXPECT_DOUBLE_EQ(p.forFrame(true).threshold.threshold_scale, 0.1);
   EXPECT_DOUBLE_EQ(p.forFrame(true).orb.noise_floor, 5.0);
+  EXPECT_EQ(p.forFrame(false).enhance.gamma_mode, GammaMode::kAlways);
+  EXPECT_EQ(p.forFrame(true).enhance.gamma_mode, GammaMode::kAuto);  // moving_gamma_mode
   // still and moving: the judgment is not read.
   p.orb.camera_motion = MotionMode::kStill;
   EXPECT_FALSE(p.movingSelection(true));
@@ -408,6 +418,7 @@ TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
   Params moving = p.forFrame(true);
   moving.threshold.threshold_scale = p.threshold.threshold_scale;
   moving.orb.noise_floor = p.orb.noise_floor;
+  moving.enhance.gamma_mode = p.enhance.gamma_mode;
   EXPECT_EQ(asText(moving), asText(p));
   // By name, as the nodelets and tools set it.
   EXPECT_EQ(setParam(p, "camera_motion", "auto"), "");
