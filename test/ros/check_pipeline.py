@@ -8,7 +8,7 @@ import rospy
 import rostest
 from sensor_msgs.msg import Image
 
-from enhanced_orb.msg import KeypointArray
+from enhanced_orb.msg import EnhanceStatus, KeypointArray
 
 MESSAGES = 40  # per output
 BUDGET = 1000  # max_features of config/default.yaml
@@ -25,6 +25,8 @@ class PipelineConsistency(unittest.TestCase):
             rospy.Subscriber(name, KeypointArray, self.on_keypoints, callback_args=name, queue_size=50)
         self.annotated = []
         rospy.Subscriber(ANNOTATED, Image, self.annotated.append, queue_size=50)
+        self.statuses = []
+        rospy.Subscriber("/cam0/enhance_status", EnhanceStatus, self.statuses.append, queue_size=50)
 
     def on_image(self, msg):
         self.images[msg.header.stamp] = (msg.width, msg.height)
@@ -79,6 +81,11 @@ class PipelineConsistency(unittest.TestCase):
             self.assertLessEqual(len(msg.keypoints), BUDGET)
         # The excerpt's camera is static: the default mode judges it still (camera_motion auto).
         self.assertFalse(any(m.camera_moving for m in improved.values()), "a static camera judged moving")
+        # The enhancement judges it too: each frame gets the still camera's gamma_mode.
+        statuses = list(self.statuses)
+        self.assertGreater(len(statuses), 10)
+        self.assertFalse(any(s.camera_moving for s in statuses), "the enhancement judged a static camera moving")
+        self.assertEqual({s.gamma_mode for s in statuses}, {"always"})
         for msg in baseline.values():
             self.check_common(msg)
             self.assertEqual(msg.threshold_mode, "fixed")
