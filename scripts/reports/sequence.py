@@ -82,7 +82,9 @@ second frame on under every light condition (a frame shifts about 12 px from the
 static `V1_01_easy_micro` excerpt, darkened, flickering or switched off, no frame is (every shift
 under 2 px, against 3.8 px for "moved"; `test_camera_motion`). A moving camera gets the moving selection:
 every cell's FAST threshold at `c_min` and each level's budget spread over its corners that stand 8 x
-the frame's measured noise above it (`moving_threshold_scale: 0`, `moving_noise_floor: 8`). A still
+the frame's measured noise above it (`moving_threshold_scale: 0`, `moving_noise_floor: 8`), on frames
+that get the tone curve only where the paper's quality test calls for it (`moving_gamma_mode: auto`;
+"Driving" below says why). A still
 camera, and every single image (the same-place tables above), keeps each level's 1.5 x budget
 strongest corners, which wins there and loses here in good light: with that selection on these
 frames (`--set camera_motion=still`, which is the default mode before the judgment) the pose AUC@10
