@@ -64,7 +64,7 @@ struct EnhanceParams {
   double sharpening = -1.0;     // eq 19: unsharp-mask degree, [-1, 5]; -1 leaves the filtered image f
   int blur_ksize = 3;           // eq 8: Gaussian kernel size, odd, [1, 31]
   double blur_sigma = 1.0;      // eq 8: Gaussian sigma, [0.1, 10]
-  double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode auto), [0, 1]
+  double std_threshold = 0.25;  // step 3: quality test on lambda (gamma_mode or moving_gamma_mode auto), [0, 1]
   GammaMode gamma_mode = GammaMode::kAlways;
   // gamma_mode while the camera moves (OrbParams::camera_motion): a moving camera's consecutive
   // frames share their exposure, so their descriptors need no tone normalisation, and on a dim

@@ -313,7 +313,7 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
   const bool by_floor = orb.max_features > 0 && orb.noise_floor > 0.0;
   out.noise = by_floor ? estimateNoise(out.image) : 0.0;
   const int least = by_floor ? std::clamp(static_cast<int>(std::ceil(orb.noise_floor * out.noise)) - 1, 0, 255) : 0;
-  double select_ms = clock.lap();
+  const double select_ms = clock.lap();  // the noise estimate, part of the selection
   ws->pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
   detectLevels(params, options.mask, least, *ws, out);
   clock.lap();

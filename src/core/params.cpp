@@ -280,7 +280,8 @@ const std::vector<Field>& fields() {
           "eq 8: Gaussian sigma", enhancementOff),
       number(
           "std_threshold", Group::kEnhance, [](Params& p) -> double& { return p.enhance.std_threshold; }, 0.0, 1.0,
-          "quality test: the tone curve runs when lambda exceeds it (gamma_mode auto)", qualityTestUnused),
+          "quality test: the tone curve runs when lambda exceeds it (gamma_mode or moving_gamma_mode auto)",
+          qualityTestUnused),
       named(
           "gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.gamma_mode; }, parseGammaMode,
           "auto|always|never", "when the tone curve runs: by the quality test, always, never", gammaModeUnused),
