@@ -332,7 +332,9 @@ void BM_Frame(benchmark::State& state) {
     eo::Extraction out;
     auto run = [&](const cv::Mat& gray) {
       if (stream) {
-        options.camera_moving = motion.update(gray) || method == kDefaultMoving;
+        const eo::StreamJudgment judged = motion.judge(gray);
+        options.camera_moving = judged.moving || method == kDefaultMoving;
+        options.stream_lambda = judged.stream_lambda;
       }
       extractor.extract(gray, options, out);
     };

@@ -25,6 +25,12 @@
 
 namespace enhanced_orb {
 
+// What a stream's frames say about its latest one (CameraMotion::judge()).
+struct StreamJudgment {
+  bool moving = false;          // CameraMotion::update()
+  double stream_lambda = -1.0;  // CameraMotion::streamLambda()
+};
+
 class CameraMotion {
 public:
   // The camera has moved once a frame is this fraction of the image width away from the last moved
@@ -54,10 +60,24 @@ public:
   // against its brightest).
   static constexpr double kUnambiguousPeakRatio = 1.2;
 
+  // A moving camera's frames are matched with each other, so they are enhanced alike: the tone
+  // curve's quality test (section III-A, step 3) reads the least lambda of the stream's last
+  // kToneFrames frames (streamLambda()), not each frame's own. A frame whose lambda alone would
+  // pass the test, between others that do not (a contrasty outdoor scene near the threshold,
+  // flickering light), then gets no curve like them; a stream that stays poor gets it on every
+  // frame (docs/RESULTS.md, "A moving camera's tone curve").
+  static constexpr int kToneFrames = 5;
+
   // Takes the stream's next frame (CV_8UC1, any size; another type or an empty frame is not
   // judged and changes nothing) and returns whether the camera is now judged to move. A frame of
   // another size than the last starts a new stream. The first frame of a stream is judged still.
   bool update(const cv::Mat& gray);
+
+  // update(gray), with streamLambda() after it.
+  StreamJudgment judge(const cv::Mat& gray) {
+    const bool judged_moving = update(gray);
+    return {judged_moving, streamLambda()};
+  }
 
   bool moving() const { return since_moved_ < kHoldFrames; }
   // The last judged frame's shift from the last moved frame, in pixels of the frame (0 for the first
@@ -66,6 +86,10 @@ public:
   // Whether the last judged frame was a new scene (unrelated to the frame before it), where the
   // shift is measured from anew.
   bool newScene() const { return new_scene_; }
+
+  // The least lambda (eq 7, enhance.h imageLambda()) of the stream's last kToneFrames frames, this
+  // one's included, since the stream or its scene began; -1 before a frame.
+  double streamLambda() const;
 
   // Forgets the stream: the next frame starts a new one.
   void reset();
@@ -110,6 +134,8 @@ private:
   int since_moved_ = kHoldFrames;                            // frames since the camera last moved
   double shift_ = 0.0;
   bool new_scene_ = false;
+  double lambdas_[kToneFrames] = {};  // the last frames' lambda, a ring; lambda_count_ of them valid
+  int lambda_count_ = 0, lambda_next_ = 0;
 };
 
 }  // namespace enhanced_orb

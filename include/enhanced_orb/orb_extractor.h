@@ -73,6 +73,9 @@ struct ExtractOptions {
   // stream's frames in order), and the frame gets the moving camera's selection. A single image,
   // or the first frame of a stream, is judged still.
   bool camera_moving = false;
+  // The stream's lambda for the tone curve's quality test of a moving camera's frame
+  // (CameraMotion::streamLambda(), Params::forFrame); < 0: the frame's own.
+  double stream_lambda = -1.0;
 };
 
 class OrbExtractor {
@@ -104,9 +107,9 @@ public:
   void extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const;
 
   // A stream's next frame: judged by `motion` (fed the stream's frames in order) when the
-  // extractor judgesMotion(), which sets options.camera_moving, then extracted; the judgment's time
-  // is out.timings.judge_ms. What every consumer of a stream (the adapters, the nodelet, the tools)
-  // calls.
+  // extractor judgesMotion(), which sets options.camera_moving and options.stream_lambda, then
+  // extracted; the judgment's time is out.timings.judge_ms. What every consumer of a stream (the
+  // adapters, the nodelet, the tools) calls.
   void extract(const cv::Mat& gray, CameraMotion& motion, ExtractOptions& options, Extraction& out) const;
 
   // The descriptors of given keypoints (level-0 coordinates, `octave` naming the level, `angle` in
@@ -124,7 +127,6 @@ private:
   void release(std::unique_ptr<Workspace> ws) const;
 
   Params params_;
-  Params moving_params_;  // params_.forFrame(true)
   struct Pool;
   std::shared_ptr<Pool> pool_;
 };

@@ -135,8 +135,11 @@ struct Params {
   // frame's camera judged moving.
   bool movingSelection(bool judged_moving) const;
   // The parameters a frame is enhanced and extracted with: these, with gamma_mode,
-  // threshold_scale and noise_floor the moving_ ones where movingSelection(judged_moving).
-  Params forFrame(bool judged_moving) const;
+  // threshold_scale and noise_floor the moving_ ones where movingSelection(judged_moving). With
+  // moving_gamma_mode auto, a moving camera's frame is tested on `stream_lambda` where it is >= 0
+  // (CameraMotion::streamLambda(): the stream's recent frames, so that they are enhanced alike)
+  // instead of on its own lambda: gamma_mode becomes always or never.
+  Params forFrame(bool judged_moving, double stream_lambda = -1.0) const;
 };
 
 // Range checks. Each returns one message per offending value, naming the parameter, the value and

@@ -7,6 +7,8 @@
 #include <opencv2/core/hal/hal.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/enhance.h"
+
 namespace enhanced_orb {
 
 // Phase correlation as cv::phaseCorrelate computes it (Hann window, normalised cross-power
@@ -24,6 +26,11 @@ void CameraMotion::reset() {
   since_moved_ = kHoldFrames;
   shift_ = 0.0;
   new_scene_ = false;
+  lambda_count_ = lambda_next_ = 0;
+}
+
+double CameraMotion::streamLambda() const {
+  return lambda_count_ == 0 ? -1.0 : *std::min_element(lambdas_, lambdas_ + lambda_count_);
 }
 
 void CameraMotion::spectrumOf(const cv::Mat& gray, cv::Mat& spectrum) {
@@ -126,6 +133,9 @@ bool CameraMotion::update(const cv::Mat& gray) {
       plans_ = Plans();
     }
   }
+  lambdas_[lambda_next_] = imageLambda(gray);
+  lambda_next_ = (lambda_next_ + 1) % kToneFrames;
+  lambda_count_ = std::min(lambda_count_ + 1, kToneFrames);
   if (thumbnail_.width < kMinThumbnail || thumbnail_.height < kMinThumbnail) {
     return moving();  // too small to judge: still
   }
@@ -159,6 +169,9 @@ bool CameraMotion::update(const cv::Mat& gray) {
   bool is_reference = true;  // whether this frame becomes the reference
   if (new_scene_) {
     // The shift is measured from here anew; no evidence of motion nor of stillness: the hold runs on.
+    // The stream's lambdas start anew with this frame's.
+    lambdas_[0] = lambdas_[(lambda_next_ + kToneFrames - 1) % kToneFrames];
+    lambda_count_ = lambda_next_ = 1;
     spectrum_.copyTo(reference_);
     reference_shift_ = shift;
   } else if (reference_is_previous_) {

@@ -42,8 +42,7 @@ struct OrbExtractor::Pool {
   std::vector<std::unique_ptr<Workspace>> free;
 };
 
-OrbExtractor::OrbExtractor(const Params& params)
-    : params_(params), moving_params_(params.forFrame(true)), pool_(std::make_shared<Pool>()) {
+OrbExtractor::OrbExtractor(const Params& params) : params_(params), pool_(std::make_shared<Pool>()) {
   const std::vector<std::string> problems = validate(params_);
   if (!problems.empty()) {
     throw std::invalid_argument(joinMessages(problems));
@@ -296,7 +295,7 @@ std::unique_ptr<OrbExtractor::Workspace, std::function<void(OrbExtractor::Worksp
 void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const {
   checkInput(gray, options.mask);
   out.camera_moving = params_.movingSelection(options.camera_moving);
-  const Params& params = out.camera_moving ? moving_params_ : params_;
+  const Params params = params_.forFrame(options.camera_moving, options.stream_lambda);
   const OrbParams& orb = params.orb;
   out.timings = StageTimings();
   out.keypoints.clear();
@@ -333,7 +332,9 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
 
 void OrbExtractor::extract(const cv::Mat& gray, CameraMotion& motion, ExtractOptions& options, Extraction& out) const {
   Stopwatch clock;
-  options.camera_moving = judgesMotion() && motion.update(gray);
+  const StreamJudgment stream = judgesMotion() ? motion.judge(gray) : StreamJudgment();
+  options.camera_moving = stream.moving;
+  options.stream_lambda = stream.stream_lambda;
   const double judge_ms = clock.lap();
   extract(gray, options, out);
   out.timings.judge_ms = judge_ms;

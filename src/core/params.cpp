@@ -51,10 +51,14 @@ bool Params::movingSelection(bool judged_moving) const {
   return orb.camera_motion == MotionMode::kMoving || (orb.camera_motion == MotionMode::kAuto && judged_moving);
 }
 
-Params Params::forFrame(bool judged_moving) const {
+Params Params::forFrame(bool judged_moving, double stream_lambda) const {
   Params p = *this;
   if (movingSelection(judged_moving)) {
     p.enhance.gamma_mode = enhance.moving_gamma_mode;
+    if (p.enhance.gamma_mode == GammaMode::kAuto && stream_lambda >= 0.0) {
+      // The quality test (section III-A, step 3) on the stream's frames rather than on this one.
+      p.enhance.gamma_mode = stream_lambda > enhance.std_threshold ? GammaMode::kAlways : GammaMode::kNever;
+    }
     p.threshold.threshold_scale = threshold.moving_threshold_scale;
     p.orb.noise_floor = orb.moving_noise_floor;
   }

@@ -31,10 +31,11 @@ Method makeMethod(const std::string& name, int budget, const Params& params) {
     Params p = preset == Preset::kDefault ? params : Params::preset(preset);
     p.orb.max_features = budget;
     auto extractor = std::make_shared<const OrbExtractor>(p);
-    return {name, budget, [extractor](const cv::Mat& gray, bool camera_moving) {
+    return {name, budget, [extractor](const cv::Mat& gray, const StreamJudgment& stream) {
               const auto start = std::chrono::steady_clock::now();
               ExtractOptions options;
-              options.camera_moving = camera_moving;
+              options.camera_moving = stream.moving;
+              options.stream_lambda = stream.stream_lambda;
               Extraction r;
               extractor->extract(gray, options, r);
               return Features{std::move(r.keypoints), r.descriptors, msSince(start)};
@@ -43,7 +44,7 @@ Method makeMethod(const std::string& name, int budget, const Params& params) {
   if (name == "cv::ORB" || name == "CLAHE+cv::ORB") {
     cv::Ptr<cv::ORB> orb = cv::ORB::create(budget > 0 ? budget : 1000000, 1.2f, 8);
     cv::Ptr<cv::CLAHE> clahe = name == "CLAHE+cv::ORB" ? cv::createCLAHE(3.0, cv::Size(8, 8)) : nullptr;
-    return {name, budget, [orb, clahe](const cv::Mat& gray, bool) {
+    return {name, budget, [orb, clahe](const cv::Mat& gray, const StreamJudgment&) {
               Features f;
               const auto start = std::chrono::steady_clock::now();
               cv::Mat input;  // a new buffer: CLAHE would write into a header of `gray` in place
@@ -61,7 +62,7 @@ Method makeMethod(const std::string& name, int budget, const Params& params) {
     OrbSlamStyleParams p;
     p.n_features = budget > 0 ? budget : 1000000;
     auto extractor = std::make_shared<const OrbSlamStyleExtractor>(p);
-    return {name, budget, [extractor](const cv::Mat& gray, bool) {
+    return {name, budget, [extractor](const cv::Mat& gray, const StreamJudgment&) {
               Features f;
               const auto start = std::chrono::steady_clock::now();
               extractor->extract(gray, f.keypoints, f.descriptors);

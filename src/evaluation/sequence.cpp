@@ -265,13 +265,13 @@ std::vector<LightCondition> lightConditions() {
   return {{"unchanged"}, {"dim"}, {"dark"}, {"dusk"}, {"lights_out"}, {"flicker"}, {"lamp"}, {"dip"}};
 }
 
-std::vector<char> judgeMotion(const std::vector<cv::Mat>& frames) {
+std::vector<StreamJudgment> judgeMotion(const std::vector<cv::Mat>& frames) {
   CameraMotion motion;
-  std::vector<char> moving(frames.size());
+  std::vector<StreamJudgment> judged(frames.size());
   for (size_t i = 0; i < frames.size(); ++i) {
-    moving[i] = motion.update(frames[i]) ? 1 : 0;
+    judged[i] = motion.judge(frames[i]);
   }
-  return moving;
+  return judged;
 }
 
 RelativePose sequencePose(const Sequence& sequence, int i, int j) {

@@ -51,8 +51,9 @@ private:
     // Judged only where the two selections enhance differently.
     const bool judge = enabled && all.orb.camera_motion == MotionMode::kAuto &&
                        all.enhance.moving_gamma_mode != all.enhance.gamma_mode;
-    const bool camera_moving = all.movingSelection(judgeMotion(msg->header.stamp, gray, judge));
-    const EnhanceParams params = all.forFrame(camera_moving).enhance;
+    const StreamJudgment stream = judgeMotion(msg->header.stamp, gray, judge);
+    const bool camera_moving = all.movingSelection(stream.moving);
+    const EnhanceParams params = all.forFrame(stream.moving, stream.stream_lambda).enhance;
     if (!enabled && msg->encoding == sensor_msgs::image_encodings::MONO8) {
       pub_.publish(msg);  // nothing to do: hand on the very same message
       publishAddress(address_pub_, *msg);

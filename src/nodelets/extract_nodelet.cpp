@@ -69,7 +69,9 @@ private:
     }
     ExtractOptions options;
     const auto judging = std::chrono::steady_clock::now();
-    options.camera_moving = judgeMotion(msg->header.stamp, gray, extractor->judgesMotion());
+    const StreamJudgment stream = judgeMotion(msg->header.stamp, gray, extractor->judgesMotion());
+    options.camera_moving = stream.moving;
+    options.stream_lambda = stream.stream_lambda;
     const double judge_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - judging).count();
     Extraction result;

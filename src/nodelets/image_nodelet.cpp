@@ -200,11 +200,11 @@ void ImageNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   total_ms_ = max_ms_ = 0.0;
 }
 
-bool ImageNodelet::judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge) {
+StreamJudgment ImageNodelet::judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge) {
   std::lock_guard<std::mutex> lock(motion_mutex_);
   if (!judge) {
     motion_.reset();
-    return false;
+    return {};
   }
   if (stamp < last_stamp_) {
     NODELET_INFO("image stamps went back (%.3f s after %.3f s): the camera's motion is judged anew", stamp.toSec(),
@@ -213,7 +213,8 @@ bool ImageNodelet::judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool
   }
   last_stamp_ = stamp;
   const bool was_moving = motion_.moving();
-  const bool moving = motion_.update(gray);
+  const StreamJudgment judged = motion_.judge(gray);
+  const bool moving = judged.moving;
   if (motion_.newScene()) {
     NODELET_INFO_THROTTLE(5.0,
                           "image unrelated to the last one (a new scene, or another camera): its shift is "
@@ -224,7 +225,7 @@ bool ImageNodelet::judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool
     NODELET_INFO("camera judged %s (shift %.1f px): the %s camera's settings from now on", moving ? "moving" : "still",
                  motion_.shift(), moving ? "moving" : "still");
   }
-  return moving;
+  return judged;
 }
 
 void ImageNodelet::warnInactive(const Params& params, const std::map<std::string, std::string>& values) {

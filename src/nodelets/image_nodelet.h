@@ -68,7 +68,8 @@ protected:
   // Whether the camera is judged moving at this image (camera_motion auto: `judge`), the images
   // taken in order as one stream (CameraMotion). A stamp before the last one (a bag played again)
   // starts a new stream; each change of the judgment is logged, and a new scene (throttled).
-  bool judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge);
+  // Not judging: still (and the stream is forgotten).
+  StreamJudgment judgeMotion(const ros::Time& stamp, const cv::Mat& gray, bool judge);
 
   image_transport::ImageTransport& transport() { return *it_; }
   // ~queue_size: of the input subscription and of every output, so that a subscriber in another

@@ -145,8 +145,8 @@ struct Runner {
   std::string label;
   int budget;
   std::vector<ev::Method> per_worker;
-  ev::Features run(int worker, const cv::Mat& gray, bool camera_moving = false) const {
-    return per_worker[worker].run(gray, camera_moving);
+  ev::Features run(int worker, const cv::Mat& gray, const enhanced_orb::StreamJudgment& stream = {}) const {
+    return per_worker[worker].run(gray, stream);
   }
 };
 
@@ -569,7 +569,7 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
     std::vector<cv::Mat> dl, dr;
     degradeSequence(frames, light, o.threads, dl, dr);
     // Each camera is a stream: its frames judged in order, as a nodelet or an adapter judges them.
-    const std::vector<char> moving_l = ev::judgeMotion(dl), moving_r = ev::judgeMotion(dr);
+    const std::vector<enhanced_orb::StreamJudgment> moving_l = ev::judgeMotion(dl), moving_r = ev::judgeMotion(dr);
     for (size_t m = 0; m < all.size(); ++m) {
       const Runner& method = all[m];
       std::vector<ev::Features> fl(n), fr(stereo ? n : 0);

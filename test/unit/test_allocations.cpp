@@ -87,8 +87,7 @@ double allocationsPerFrame(const std::vector<cv::Mat>& frames, int& moving) {
     motion.reset();
     const long before = g_allocations.load();
     for (const cv::Mat& frame : frames) {
-      options.camera_moving = motion.update(frame);
-      extractor.extract(frame, options, out);
+      extractor.extract(frame, motion, options, out);
       moving += pass == 1 && options.camera_moving;
     }
     counted = g_allocations.load() - before;

@@ -148,14 +148,16 @@ TEST(CameraMotion, SharedFramesOfAStillAndAMovingCamera) {
     for (int i = 0; i < n_moving; ++i) {
       walked.push_back(light.apply(moving[i], i, n_moving, 500 + i));
     }
+    const auto moving_count = [](const std::vector<StreamJudgment>& judged, size_t from) {
+      return std::count_if(judged.begin() + from, judged.end(), [](const StreamJudgment& j) { return j.moving; });
+    };
     for (const std::vector<cv::Mat>* frames : {&raw, &enhanced}) {
-      const std::vector<char> judged = evaluation::judgeMotion(*frames);
-      EXPECT_EQ(std::count(judged.begin(), judged.end(), 1), 0)
+      EXPECT_EQ(moving_count(evaluation::judgeMotion(*frames), 0), 0)
           << light.name << (frames == &raw ? ", raw" : ", enhanced");
     }
-    const std::vector<char> judged = evaluation::judgeMotion(walked);
-    EXPECT_EQ(judged[0], 0) << light.name;
-    EXPECT_EQ(std::count(judged.begin() + 1, judged.end(), 1), n_moving - 1) << light.name;
+    const std::vector<StreamJudgment> judged = evaluation::judgeMotion(walked);
+    EXPECT_FALSE(judged[0].moving) << light.name;
+    EXPECT_EQ(moving_count(judged, 1), n_moving - 1) << light.name;
   }
 }
 
@@ -352,6 +354,62 @@ TEST(CameraMotion, AMovingCamerasFrameGetsTheToneCurveByTheQualityTest) {
   automatic.extract(contrasty, a);
   automatic.extract(contrasty, moving, b);
   EXPECT_EQ(cv::norm(a.image, b.image, cv::NORM_INF), 0.0);
+}
+
+// A moving camera's frames are enhanced alike: the quality test reads the least lambda of the
+// stream's last kToneFrames frames. A contrasty frame between dim ones (flickering light) gets no
+// curve, as they do; once kToneFrames contrasty frames have passed it gets it, as a still frame would.
+TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
+  const double threshold = Params().enhance.std_threshold;
+  cv::RNG rng(11);
+  const auto frame = [&](int i, bool contrasty) {
+    cv::Mat f = view(scene(), 6.0 * i, 3.0 * i);
+    if (contrasty) {
+      f.convertTo(f, CV_8U, 3.0, -250.0);
+    } else {
+      f = underLight(f, 0.4, 1.5, rng);
+    }
+    return f;
+  };
+  CameraMotion motion;
+  EXPECT_DOUBLE_EQ(motion.streamLambda(), -1.0);
+  const OrbExtractor extractor;
+  ExtractOptions options;
+  Extraction out;
+  int i = 0;
+  // Flicker: dim and contrasty frames in turn, the camera moving.
+  for (; i < 12; ++i) {
+    const cv::Mat f = frame(i, i % 2 == 0);  // the last one dim
+    extractor.extract(f, motion, options, out);
+    EXPECT_NEAR(out.lambda, imageLambda(f), 1e-12);
+    if (i >= 2) {
+      ASSERT_TRUE(out.camera_moving) << i;
+      EXPECT_LE(options.stream_lambda, threshold) << i;
+      EXPECT_FALSE(out.poor_quality) << "frame " << i << ", lambda " << out.lambda;
+    }
+  }
+  ASSERT_GT(imageLambda(frame(i, true)), threshold);
+  // Then contrasty frames only: the curve from the kToneFrames-th on.
+  for (int k = 1; k <= 2 * CameraMotion::kToneFrames; ++i, ++k) {
+    extractor.extract(frame(i, true), motion, options, out);
+    ASSERT_TRUE(out.camera_moving) << i;
+    EXPECT_EQ(out.poor_quality, k >= CameraMotion::kToneFrames) << "contrasty frame " << k;
+  }
+  // What the tool reports is the decision made: the same image as gamma_mode always gives.
+  const cv::Mat last = frame(i - 1, true);
+  EnhanceParams always = Params().enhance;
+  always.gamma_mode = GammaMode::kAlways;
+  EXPECT_EQ(cv::norm(out.image, enhance(last, always).image, cv::NORM_INF), 0.0);
+  // A new stream forgets the lambdas.
+  motion.reset();
+  EXPECT_DOUBLE_EQ(motion.streamLambda(), -1.0);
+  motion.update(last);
+  EXPECT_DOUBLE_EQ(motion.streamLambda(), imageLambda(last));
+  // A still camera's frame ignores the stream's lambda (gamma_mode always).
+  ExtractOptions still;
+  still.stream_lambda = 0.0;
+  extractor.extract(frame(0, false), still, out);
+  EXPECT_TRUE(out.poor_quality);
 }
 
 }  // namespace

@@ -407,6 +407,17 @@ TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
   EXPECT_DOUBLE_EQ(p.forFrame(true).orb.noise_floor, 5.0);
   EXPECT_EQ(p.forFrame(false).enhance.gamma_mode, GammaMode::kAlways);
   EXPECT_EQ(p.forFrame(true).enhance.gamma_mode, GammaMode::kAuto);  // moving_gamma_mode
+  // With the stream's lambda, moving_gamma_mode auto is decided on it; a still frame ignores it.
+  EXPECT_EQ(p.forFrame(true, 0.26).enhance.gamma_mode, GammaMode::kAlways);
+  EXPECT_EQ(p.forFrame(true, 0.25).enhance.gamma_mode, GammaMode::kNever);  // not above std_threshold
+  EXPECT_EQ(p.forFrame(true, 0.0).enhance.gamma_mode, GammaMode::kNever);
+  EXPECT_EQ(p.forFrame(false, 0.1).enhance.gamma_mode, GammaMode::kAlways);
+  p.enhance.std_threshold = 0.1;
+  EXPECT_EQ(p.forFrame(true, 0.2).enhance.gamma_mode, GammaMode::kAlways);
+  p.enhance.std_threshold = 0.25;
+  p.enhance.moving_gamma_mode = GammaMode::kNever;
+  EXPECT_EQ(p.forFrame(true, 0.9).enhance.gamma_mode, GammaMode::kNever);
+  p.enhance.moving_gamma_mode = GammaMode::kAuto;
   // still and moving: the judgment is not read.
   p.orb.camera_motion = MotionMode::kStill;
   EXPECT_FALSE(p.movingSelection(true));

@@ -9,6 +9,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/params.h"
 
 namespace enhanced_orb {
@@ -23,11 +24,14 @@ struct Features {
 struct Method {
   std::string name;
   int budget = 1000;  // 0: every corner
-  // Extracts from one frame. camera_moving: the frame's camera is judged moving (CameraMotion fed
-  // the stream's frames in order, judgeMotion()); only modes with camera_motion auto read it.
-  std::function<Features(const cv::Mat& gray, bool camera_moving)> extract;
+  // Extracts from one frame. `stream`: the frame's judgment (CameraMotion fed the stream's frames
+  // in order, judgeMotion()); only modes with camera_motion auto read it. A single image: judged
+  // still.
+  std::function<Features(const cv::Mat& gray, const StreamJudgment& stream)> extract;
 
-  Features run(const cv::Mat& gray, bool camera_moving = false) const { return extract(gray, camera_moving); }
+  Features run(const cv::Mat& gray, const StreamJudgment& stream = StreamJudgment()) const {
+    return extract(gray, stream);
+  }
 };
 
 // "default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB" (motion, stretch and

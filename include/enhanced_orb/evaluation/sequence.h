@@ -11,6 +11,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/evaluation/dataset.h"
 #include "enhanced_orb/evaluation/metrics.h"
 
@@ -70,9 +71,9 @@ struct LightCondition {
 };
 std::vector<LightCondition> lightConditions();
 
-// Each frame's CameraMotion judgment (1: the camera judged moving), the frames fed in order as one
-// camera's stream: what a stream's extractor with camera_motion auto reads (Method::run).
-std::vector<char> judgeMotion(const std::vector<cv::Mat>& frames);
+// Each frame's CameraMotion judgment, the frames fed in order as one camera's stream: what a
+// stream's extractor with camera_motion auto reads (Method::run).
+std::vector<StreamJudgment> judgeMotion(const std::vector<cv::Mat>& frames);
 
 // Relative pose from a monocular pair of a sequence: the ground truth of frame j relative to frame i.
 RelativePose sequencePose(const Sequence& sequence, int i, int j);
