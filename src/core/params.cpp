@@ -291,7 +291,8 @@ const std::vector<Field>& fields() {
           "auto|always|never", "when the tone curve runs: by the quality test, always, never", gammaModeUnused),
       named(
           "moving_gamma_mode", Group::kEnhance, [](Params& p) -> GammaMode& { return p.enhance.moving_gamma_mode; },
-          parseGammaMode, "auto|always|never", "gamma_mode while the camera moves (camera_motion)",
+          parseGammaMode, "auto|always|never",
+          "gamma_mode while the camera moves (camera_motion; auto: the quality test on the stream's last 5 frames)",
           movingGammaModeUnused),
       number(
           "enhance_threads", Group::kEnhance, [](Params& p) -> int& { return p.enhance.threads; }, 1, 64,
