@@ -84,9 +84,10 @@ public:
   explicit OrbExtractor(const Params& params = Params());
 
   const Params& params() const { return params_; }
-  // Whether extract() reads ExtractOptions::camera_moving (camera_motion auto), so that a caller
-  // feeding a stream knows to judge its frames.
-  bool judgesMotion() const { return params_.orb.camera_motion == MotionMode::kAuto; }
+  // Whether extract() reads the stream's judgment in ExtractOptions (Params::judgesStream():
+  // camera_moving under camera_motion auto, stream_lambda where a moving camera's frame takes
+  // moving_gamma_mode auto), so that a caller feeding a stream knows to judge its frames.
+  bool judgesMotion() const { return params_.judgesStream(); }
 
   // Extracts from an 8-bit gray image. An empty image gives an empty result.
   // Throws std::invalid_argument when `gray` is not CV_8UC1.

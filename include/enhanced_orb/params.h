@@ -141,6 +141,11 @@ struct Params {
   // (CameraMotion::streamLambda(): the stream's recent frames, so that they are enhanced alike)
   // instead of on its own lambda: gamma_mode becomes always or never.
   Params forFrame(bool judged_moving, double stream_lambda = -1.0) const;
+  // Whether a frame's enhancement depends on its stream (CameraMotion: the judgment, or the stream's
+  // lambda for moving_gamma_mode auto), and whether its extraction does (the enhancement's, or the
+  // selection under camera_motion auto): a caller that feeds a stream then judges its frames.
+  bool enhancementJudgesStream() const;
+  bool judgesStream() const;
 };
 
 // Range checks. Each returns one message per offending value, naming the parameter, the value and

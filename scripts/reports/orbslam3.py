@@ -39,10 +39,11 @@ pace themselves. **frames tracked**: frames in ORB-SLAM3's trajectory file, i.e.
 map and not lost, over the 300 given; **local map lost**: its "Fail to track local map!" events;
 **maps**: maps started (each after the first is a reset or a new map after tracking was lost);
 **ATE**: RMSE of the camera positions after alignment to the ground truth (T_WB T_BS of cam0).
-These runs predate the default mode's judgment of camera motion: its rows are the still camera's
-selection (`camera_motion: still`). ORB-SLAM calls each extractor with one camera's frames in order,
-so the default mode now takes the moving selection from the second frame on, which the `motion`
-rows (the moving selection throughout) measure.
+**enhanced_orb default** is the shipping default mode as a user gets it (`config/default.yaml`):
+ORB-SLAM calls each extractor with one camera's frames in order, so the adapter judges from them
+whether the camera moves (the moving selection from the second frame on here, the tone curve by the
+quality test on the stream's last frames); **enhanced_orb motion** takes the moving selection from
+the first frame (`config/motion.yaml`), each frame's own quality test.
 
 ```bash
 bash scripts/orbslam3_eval.sh ~/ORB_SLAM3 ~/ORB_SLAM3/Vocabulary/ORBvoc.txt \

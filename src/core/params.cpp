@@ -65,6 +65,18 @@ Params Params::forFrame(bool judged_moving, double stream_lambda) const {
   return p;
 }
 
+bool Params::enhancementJudgesStream() const {
+  if (!enhance_enabled || orb.camera_motion == MotionMode::kStill) {
+    return false;
+  }
+  return enhance.moving_gamma_mode == GammaMode::kAuto ||
+         (orb.camera_motion == MotionMode::kAuto && enhance.moving_gamma_mode != enhance.gamma_mode);
+}
+
+bool Params::judgesStream() const {
+  return orb.camera_motion == MotionMode::kAuto || enhancementJudgesStream();
+}
+
 Params Params::preset(Preset preset) {
   switch (preset) {
     case Preset::kMotion:

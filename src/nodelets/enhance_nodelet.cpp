@@ -48,9 +48,8 @@ private:
       all = params_;
     }
     const bool enabled = all.enhance_enabled;
-    // Judged only where the two selections enhance differently.
-    const bool judge = enabled && all.orb.camera_motion == MotionMode::kAuto &&
-                       all.enhance.moving_gamma_mode != all.enhance.gamma_mode;
+    // Judged only where the enhancement depends on the stream.
+    const bool judge = all.enhancementJudgesStream();
     const StreamJudgment stream = judgeMotion(msg->header.stamp, gray, judge);
     const bool camera_moving = all.movingSelection(stream.moving);
     const EnhanceParams params = all.forFrame(stream.moving, stream.stream_lambda).enhance;

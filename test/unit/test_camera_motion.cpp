@@ -405,6 +405,16 @@ TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
   EXPECT_DOUBLE_EQ(motion.streamLambda(), -1.0);
   motion.update(last);
   EXPECT_DOUBLE_EQ(motion.streamLambda(), imageLambda(last));
+  // camera_motion moving (the motion preset) reads the stream's lambda too: a contrasty frame after
+  // dim ones gets no curve.
+  const OrbExtractor motion_preset(Params::motion());
+  CameraMotion stream;
+  for (int k = 0; k < 3; ++k) {
+    motion_preset.extract(frame(k, false), stream, options, out);
+  }
+  motion_preset.extract(frame(3, true), stream, options, out);
+  EXPECT_TRUE(out.camera_moving);
+  EXPECT_FALSE(out.poor_quality);
   // A still camera's frame ignores the stream's lambda (gamma_mode always).
   ExtractOptions still;
   still.stream_lambda = 0.0;

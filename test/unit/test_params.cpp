@@ -418,6 +418,25 @@ TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
   p.enhance.moving_gamma_mode = GammaMode::kNever;
   EXPECT_EQ(p.forFrame(true, 0.9).enhance.gamma_mode, GammaMode::kNever);
   p.enhance.moving_gamma_mode = GammaMode::kAuto;
+  // Who judges a stream: the default mode's extraction and enhancement, the motion preset's
+  // enhancement (its frames' lambda), neither for a still camera or the paper.
+  EXPECT_TRUE(Params().judgesStream());
+  EXPECT_TRUE(Params().enhancementJudgesStream());
+  EXPECT_TRUE(Params::motion().judgesStream());
+  EXPECT_TRUE(Params::motion().enhancementJudgesStream());
+  EXPECT_FALSE(Params::paper().judgesStream());
+  EXPECT_FALSE(Params::baseline().judgesStream());
+  Params fixed_curve = Params::motion();
+  fixed_curve.enhance.moving_gamma_mode = GammaMode::kNever;
+  EXPECT_FALSE(fixed_curve.judgesStream());
+  fixed_curve.orb.camera_motion = MotionMode::kAuto;
+  EXPECT_TRUE(fixed_curve.judgesStream());             // the selection
+  EXPECT_TRUE(fixed_curve.enhancementJudgesStream());  // never while moving, always while still
+  fixed_curve.enhance.gamma_mode = GammaMode::kNever;
+  EXPECT_FALSE(fixed_curve.enhancementJudgesStream());  // the same curve either way
+  fixed_curve.enhance_enabled = false;
+  fixed_curve.enhance.moving_gamma_mode = GammaMode::kAuto;
+  EXPECT_FALSE(fixed_curve.enhancementJudgesStream());
   // still and moving: the judgment is not read.
   p.orb.camera_motion = MotionMode::kStill;
   EXPECT_FALSE(p.movingSelection(true));
