@@ -43,7 +43,9 @@ map and not lost, over the 300 given; **local map lost**: its "Fail to track loc
 ORB-SLAM calls each extractor with one camera's frames in order, so the adapter judges from them
 whether the camera moves (the moving selection from the second frame on here, the tone curve by the
 quality test on the stream's last frames); **enhanced_orb motion** takes the moving selection from
-the first frame (`config/motion.yaml`), each frame's own quality test.
+the first frame (`config/motion.yaml`); **enhanced_orb curve** is the default mode with
+`moving_gamma_mode: always` (`config/default.yaml` plus that line, run as `PRESETS=curve` with the
+file saved as `config/curve.yaml`): the tone curve on every frame, as a still camera gets it.
 
 ```bash
 bash scripts/orbslam3_eval.sh ~/ORB_SLAM3 ~/ORB_SLAM3/Vocabulary/ORBvoc.txt \
