@@ -33,6 +33,17 @@ struct StreamJudgment {
 
 class CameraMotion {
 public:
+  // How a stream's first frame is judged, before a second frame can say whether the camera moves.
+  enum class Start {
+    kStill,   // still: a folder of images, a camera whose motion is not known
+    kMoving,  // moving, for that frame only: a SLAM front end's camera, which must move to start a
+              // map and whose first frames start it (ORB-SLAM's monocular map is made from two of
+              // them, and frames of one selection match each other best). A frame too small to
+              // judge keeps this start.
+  };
+
+  explicit CameraMotion(Start start = Start::kStill) : start_(start) { reset(); }
+
   // The camera has moved once a frame is this fraction of the image width away from the last moved
   // frame (about 4 pixels at 752: twice the largest shift measured on a still camera in the dark),
   // and at least kMinMovedShift pixels of the thumbnail (below it the shift is within the error
@@ -70,7 +81,8 @@ public:
 
   // Takes the stream's next frame (CV_8UC1, any size; another type or an empty frame is not
   // judged and changes nothing) and returns whether the camera is now judged to move. A frame of
-  // another size than the last starts a new stream. The first frame of a stream is judged still.
+  // another size than the last starts a new stream. The first frame of a stream is judged as
+  // Start says; a new scene keeps the judgment as it was.
   bool update(const cv::Mat& gray);
 
   // update(gray), with streamLambda() after it.
@@ -93,6 +105,8 @@ public:
 
   // Forgets the stream: the next frame starts a new one.
   void reset();
+
+  Start start() const { return start_; }
 
 private:
   // The windowed thumbnail's spectrum of `gray` into `spectrum`.
@@ -122,6 +136,7 @@ private:
     }
   };
 
+  Start start_ = Start::kStill;
   cv::Size frame_size_, thumbnail_;
   Plans plans_;
   std::vector<cv::Mat> halves_;  // the frame halved once, twice, ... (the last is the thumbnail)

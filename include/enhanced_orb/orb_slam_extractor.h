@@ -10,7 +10,8 @@
 // the environment variable ENHANCED_ORB_CONFIG (readParamsFile(): a `preset` and/or parameters by
 // their ROS names, e.g. the package's config/motion.yaml) or, without it, the default mode. Each
 // extractor takes one camera's frames in order (as ORB-SLAM calls it), so camera_motion auto
-// judges from them whether the camera moves.
+// judges from them whether the camera moves; the first frame counts as a moving camera's
+// (CameraMotion::Start::kMoving), as ORB-SLAM starts its map from the first frames of one.
 //
 // This header needs only C++11 and OpenCV (ORB-SLAM builds as C++11 or C++14); the rest of the
 // package is C++17 behind it.

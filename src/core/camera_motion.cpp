@@ -23,7 +23,9 @@ void CameraMotion::reset() {
   previous_.release();
   reference_is_previous_ = false;
   reference_shift_ = cv::Point2d();
-  since_moved_ = kHoldFrames;
+  // A moving start counts the first frame as one the camera left its last position on: held
+  // moving for that frame, judged by the next one's shift from then on.
+  since_moved_ = start_ == Start::kMoving ? kHoldFrames - 1 : kHoldFrames;
   shift_ = 0.0;
   new_scene_ = false;
   lambda_count_ = lambda_next_ = 0;

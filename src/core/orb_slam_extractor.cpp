@@ -35,7 +35,9 @@ struct OrbSlamExtractor::State {
   OrbExtractor extractor;
   Extraction result;
   cv::Mat ordered;      // the descriptors in ORB-SLAM3's order, reused frame after frame
-  CameraMotion motion;  // ORB-SLAM calls each extractor with one camera's frames in order
+  // ORB-SLAM calls each extractor with one camera's frames in order, and its map starts from the
+  // first ones of a moving camera.
+  CameraMotion motion{CameraMotion::Start::kMoving};
 };
 
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST)
@@ -44,7 +46,7 @@ OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels
 OrbSlamExtractor::OrbSlamExtractor(int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST,
                                    const Params& base)
     : state_(new State{OrbExtractor(withOrbSlamSettings(base, nfeatures, scaleFactor, nlevels, iniThFAST, minThFAST)),
-                       Extraction(), cv::Mat(), CameraMotion()}),
+                       Extraction(), cv::Mat()}),
       scale_factor_(scaleFactor) {
   const OrbParams& orb = state_->extractor.params().orb;
   for (int level = 0; level < orb.n_levels; ++level) {

@@ -11,6 +11,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/feature2d.h"
 #include "enhanced_orb/orb_slam_extractor.h"
 #include "test_images.h"
@@ -198,9 +199,13 @@ TEST(OrbSlamExtractor, HasOrbSlam3sInterfaceAndOrdering) {
     EXPECT_EQ(inside, i >= mono) << i;
     EXPECT_FLOAT_EQ(keys[i].size, 31.f * scales[keys[i].octave]);
   }
-  // The same keypoints and descriptors as extract(), reordered.
+  // The same keypoints and descriptors as extract() on a stream that starts moving, reordered.
   Params params = extractor.params();
-  const Extraction expected = OrbExtractor(params).extract(image);
+  CameraMotion motion(CameraMotion::Start::kMoving);
+  ExtractOptions options;
+  Extraction expected;
+  OrbExtractor(params).extract(image, motion, options, expected);
+  EXPECT_TRUE(expected.camera_moving);
   ASSERT_EQ(expected.keypoints.size(), keys.size());
   int matched = 0;
   for (size_t i = 0; i < keys.size(); ++i) {

@@ -125,6 +125,33 @@ TEST(CameraMotion, BadFramesChangeNothingAndANewSizeStartsANewStream) {
   EXPECT_FALSE(motion.update(view(scene(), 90, 0)));
 }
 
+// A SLAM front end's stream starts moving: its first frame is judged moving, the next ones by their
+// shift as any stream's; a new size starts it anew, a frame too small to judge keeps the start.
+TEST(CameraMotion, AStreamThatStartsMovingIsJudgedByItsSecondFrame) {
+  for (bool camera_moves : {false, true}) {
+    CameraMotion motion(CameraMotion::Start::kMoving);
+    EXPECT_EQ(motion.start(), CameraMotion::Start::kMoving);
+    EXPECT_TRUE(motion.moving());
+    EXPECT_TRUE(motion.update(view(scene(), 200, 200)));
+    EXPECT_EQ(motion.update(view(scene(), camera_moves ? 230 : 200, 200)), camera_moves);
+    EXPECT_EQ(motion.update(view(scene(), camera_moves ? 260 : 200, 200)), camera_moves);
+  }
+  CameraMotion motion(CameraMotion::Start::kMoving);
+  motion.update(view(scene(), 0, 0));
+  EXPECT_FALSE(motion.update(view(scene(), 0, 0)));
+  EXPECT_TRUE(motion.update(cv::Mat(240, 320, CV_8UC1, cv::Scalar(9))));  // another size: a first frame
+  EXPECT_FALSE(motion.update(cv::Mat(240, 320, CV_8UC1, cv::Scalar(9))));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(motion.update(cv::Mat(12, 9, CV_8UC1, cv::Scalar(i))));  // never judged: the start
+  }
+  motion.reset();
+  EXPECT_TRUE(motion.moving());
+  // A copy starts its streams as the original does.
+  const CameraMotion copy = motion;
+  EXPECT_EQ(copy.start(), CameraMotion::Start::kMoving);
+  EXPECT_EQ(CameraMotion().start(), CameraMotion::Start::kStill);
+}
+
 // The shared frames of a static camera (V1_01 excerpt) are judged still under every light
 // condition of the sequence evaluation, raw and enhanced (as ExtractNodelet sees them after
 // EnhanceNodelet); those of a hand-carried camera (MH_01 excerpt) moving from the second frame on.
@@ -311,12 +338,17 @@ TEST(CameraMotion, ExtractorsFollowTheJudgment) {
   EXPECT_GT(orb->timings().judge_ms, 0.0);
   EXPECT_GE(orb->timings().totalMs(), orb->timings().enhance_ms + orb->timings().extract_ms);
 
-  // ORB-SLAM's extractor, settings as the default mode's: the same.
+  // ORB-SLAM's extractor, settings as the default mode's: the same, except that its first frame
+  // already counts as a moving camera's (its map starts from the first frames).
   OrbSlamExtractor slam(1000, 1.2f, 8, 20, 7, Params());
-  std::vector<int> lapping;
+  std::vector<int> lapping;  // none: the keypoints in the extractor's order
   slam(first, cv::noArray(), keypoints, descriptors, lapping);
+  const Extraction m_first = moving_only.extract(first);
+  ASSERT_EQ(keypoints.size(), m_first.keypoints.size());
+  EXPECT_EQ(cv::norm(descriptors, m_first.descriptors, cv::NORM_INF), 0.0);
   slam(second, cv::noArray(), keypoints, descriptors, lapping);
-  EXPECT_EQ(keypoints.size(), m.keypoints.size());
+  ASSERT_EQ(keypoints.size(), m.keypoints.size());
+  EXPECT_EQ(cv::norm(descriptors, m.descriptors, cv::NORM_INF), 0.0);
 }
 
 // A moving camera's frame is enhanced with moving_gamma_mode (auto: the paper's quality test), a
