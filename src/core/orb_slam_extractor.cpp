@@ -34,7 +34,7 @@ Params withOrbSlamSettings(Params params, int nfeatures, float scaleFactor, int 
 struct OrbSlamExtractor::State {
   OrbExtractor extractor;
   Extraction result;
-  cv::Mat ordered;      // the descriptors in ORB-SLAM3's order, reused frame after frame
+  cv::Mat ordered;  // the descriptors in ORB-SLAM3's order, reused frame after frame
   // ORB-SLAM calls each extractor with one camera's frames in order, and its map starts from the
   // first ones of a moving camera.
   CameraMotion motion{CameraMotion::Start::kMoving};
