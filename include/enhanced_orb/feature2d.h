@@ -25,9 +25,12 @@ Params presetParams(const std::string& name);
 // Parameters from a FileStorage node: a `preset` name, if any, seeds them (else `base`), then each
 // parameter present by its ROS name (paramNames()); other keys are ignored, so the package's
 // config/*.yaml files read as they are. Throws std::invalid_argument on a bad value or range.
-Params readParams(const cv::FileNode& node, const Params& base = Params());
+// `given`, where not null, receives the names of the parameters the node sets, in paramNames()'s
+// order.
+Params readParams(const cv::FileNode& node, const Params& base = Params(), std::vector<std::string>* given = nullptr);
 // The same from a YAML file (the `%YAML:1.0` line OpenCV wants may be missing, as in ROS files).
-Params readParamsFile(const std::string& path, const Params& base = Params());
+Params readParamsFile(const std::string& path, const Params& base = Params(),
+                      std::vector<std::string>* given = nullptr);
 
 class ORB : public cv::Feature2D {
 public:

@@ -54,13 +54,19 @@ Params presetParams(const std::string& name) {
   return Params::preset(preset);
 }
 
-Params readParams(const cv::FileNode& node, const Params& base) {
+Params readParams(const cv::FileNode& node, const Params& base, std::vector<std::string>* given) {
   const cv::FileNode preset = node["preset"];
   Params params = preset.isString() ? presetParams(static_cast<std::string>(preset)) : base;
   std::vector<std::string> problems;
+  if (given) {
+    given->clear();
+  }
   for (const std::string& name : paramNames()) {
     const cv::FileNode value = node[name];
     if (!value.empty()) {
+      if (given) {
+        given->push_back(name);
+      }
       const std::string problem = setParam(params, name, textOf(value));
       if (!problem.empty()) {
         problems.push_back(problem);
@@ -75,7 +81,7 @@ Params readParams(const cv::FileNode& node, const Params& base) {
   return params;
 }
 
-Params readParamsFile(const std::string& path, const Params& base) {
+Params readParamsFile(const std::string& path, const Params& base, std::vector<std::string>* given) {
   std::ifstream file(path);
   if (!file) {
     throw std::invalid_argument("cannot read parameters from '" + path + "'");
@@ -93,7 +99,7 @@ Params readParamsFile(const std::string& path, const Params& base) {
   }
   try {
     cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-    return readParams(fs.root(), base);
+    return readParams(fs.root(), base, given);
   } catch (const cv::Exception& e) {
     throw std::invalid_argument("'" + path + "' is not YAML OpenCV reads: " + e.err);
   }

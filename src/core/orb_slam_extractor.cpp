@@ -1,6 +1,8 @@
 #include "enhanced_orb/orb_slam_extractor.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <string>
 #include <utility>
 
 #include <opencv2/imgproc.hpp>
@@ -13,11 +15,22 @@
 namespace enhanced_orb {
 namespace {
 
+// A SLAM map matches each frame against points described from frames under earlier light, so in
+// ORB-SLAM a moving camera's frames all get the tone curve, whatever their quality test says: through
+// a dip of the light ORB-SLAM3 then keeps tracking in one map, where the quality test's choice (auto,
+// made on the relative pose of nearby frames) loses it (docs/RESULTS.md, "Inside ORB-SLAM3").
+constexpr GammaMode kSlamMovingGammaMode = GammaMode::kAlways;
+
 // The five-argument constructor's other parameters: the file ENHANCED_ORB_CONFIG names, or the
-// default mode.
+// default mode; moving_gamma_mode kSlamMovingGammaMode unless the file sets it.
 Params configuredBase() {
   const char* path = std::getenv("ENHANCED_ORB_CONFIG");
-  return path && *path ? readParamsFile(path) : Params();
+  std::vector<std::string> given;
+  Params params = path && *path ? readParamsFile(path, Params(), &given) : Params();
+  if (std::find(given.begin(), given.end(), "moving_gamma_mode") == given.end()) {
+    params.enhance.moving_gamma_mode = kSlamMovingGammaMode;
+  }
+  return params;
 }
 
 Params withOrbSlamSettings(Params params, int nfeatures, float scaleFactor, int nlevels, int iniThFAST, int minThFAST) {

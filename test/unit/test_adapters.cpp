@@ -242,6 +242,20 @@ TEST(OrbSlamExtractor, TakesTheOtherParametersFromAFileOrAPreset) {
   unsetenv("ENHANCED_ORB_CONFIG");
   EXPECT_EQ(from_file.params().orb.noise_floor, Params::motion().orb.noise_floor);
   EXPECT_EQ(from_file.params().orb.max_features, 1200);  // ORB-SLAM's own settings win
+  // In ORB-SLAM a moving camera's frames all get the tone curve, unless the file says otherwise.
+  EXPECT_EQ(from_file.params().enhance.moving_gamma_mode, GammaMode::kAlways);
+  EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().enhance.moving_gamma_mode, GammaMode::kAlways);
+  EXPECT_EQ(Params().enhance.moving_gamma_mode, GammaMode::kAuto);  // elsewhere the default mode's
+  const std::string own = ::testing::TempDir() + "orb_slam_auto.yaml";
+  std::ofstream(own) << "preset: default\nmoving_gamma_mode: auto\nc_min: 9\n";
+  setenv("ENHANCED_ORB_CONFIG", own.c_str(), 1);
+  OrbSlamExtractor auto_file(1000, 1.2f, 8, 20, 7);
+  unsetenv("ENHANCED_ORB_CONFIG");
+  EXPECT_EQ(auto_file.params().enhance.moving_gamma_mode, GammaMode::kAuto);
+  EXPECT_EQ(auto_file.params().threshold.c_min, 7);  // minThFAST wins over the file
+  std::vector<std::string> given;
+  readParamsFile(own, Params(), &given);
+  EXPECT_EQ(given, (std::vector<std::string>{"moving_gamma_mode", "c_min"}));
   OrbSlamExtractor paper(1000, 1.2f, 8, 20, 7, Params::paper());
   EXPECT_EQ(paper.params().enhance.tone_curve, Params::paper().enhance.tone_curve);
   EXPECT_THROW(OrbSlamExtractor(1000, 1.2f, 8, 20, 0), std::invalid_argument);  // c_min below 1
