@@ -39,13 +39,16 @@ pace themselves. **frames tracked**: frames in ORB-SLAM3's trajectory file, i.e.
 map and not lost, over the 300 given; **local map lost**: its "Fail to track local map!" events;
 **maps**: maps started (each after the first is a reset or a new map after tracking was lost);
 **ATE**: RMSE of the camera positions after alignment to the ground truth (T_WB T_BS of cam0).
-**enhanced_orb default** is the shipping default mode as a user gets it (`config/default.yaml`):
-ORB-SLAM calls each extractor with one camera's frames in order, so the adapter judges from them
-whether the camera moves (the moving selection from the second frame on here, the tone curve by the
-quality test on the stream's last frames); **enhanced_orb motion** takes the moving selection from
-the first frame (`config/motion.yaml`); **enhanced_orb curve** is the default mode with
-`moving_gamma_mode: always` (`config/default.yaml` plus that line, run as `PRESETS=curve` with the
-file saved as `config/curve.yaml`): the tone curve on every frame, as a still camera gets it.
+**enhanced_orb default** is the adapter as a user gets it (no `ENHANCED_ORB_CONFIG`, or
+`config/default.yaml`): the default mode, which judges from the frames ORB-SLAM gives each extractor
+in order whether the camera moves (the moving selection here from the first frame on: the adapter
+counts a stream's first frame as a moving camera's, and the second confirms it), with the tone curve
+on every frame of a moving camera (the adapter's `moving_gamma_mode: always`, since a SLAM map
+matches frames against points described under earlier light); **enhanced_orb auto** the same with
+`moving_gamma_mode: auto`, the default mode's choice elsewhere (the curve only where the quality test
+calls the stream's last 5 frames poor; run as `PRESETS=auto` with `config/auto.yaml` =
+`config/default.yaml` plus that line); **enhanced_orb motion** `config/motion.yaml` (the moving
+selection without the judgment; the curve on every frame as in the default).
 
 ```bash
 bash scripts/orbslam3_eval.sh ~/ORB_SLAM3 ~/ORB_SLAM3/Vocabulary/ORBvoc.txt \
