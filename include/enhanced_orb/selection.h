@@ -29,7 +29,7 @@ std::vector<cv::KeyPoint> selectSpread(std::vector<cv::KeyPoint> keypoints, int 
 struct SelectionWorkspace {
   std::vector<int> budgets;
   std::vector<std::uint64_t> keys, ranked;
-  std::vector<int> order, bucket_of, begin, end;
+  std::vector<int> order, bucket_of, begin, end, bucket_start, bucket_next;
   std::vector<cv::KeyPoint> round, selected;
 };
 

@@ -286,7 +286,13 @@ ToneLut toneCurve8Bit(const cv::Mat& f, const EnhanceParams& params, bool poor_q
 // is -1.
 EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::Mat output, EnhanceResult result,
                           EnhanceWorkspace& scratch) {
-  cv::Mat& f = scratch.f8;
+  // Eqs 17-20 with the default mode's curve: E = I + sharpening (I - f) + beta (LUT(f) - f); with
+  // sharpening -1 and no curve (beta 0) that is f itself, filtered straight into the result.
+  const double s = params.sharpening;
+  const double b = result.poor_quality ? params.beta : 0.0;
+  result.image = output;
+  result.image.create(gray.size(), CV_8UC1);
+  cv::Mat& f = s == -1.0 && b == 0.0 && result.image.data != gray.data ? result.image : scratch.f8;
   f.create(gray.size(), CV_8UC1);
   std::vector<int>& starts = scratch.starts;
   bandStarts(gray.rows, params.threads, starts);
@@ -295,12 +301,10 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   // view would round differently along its edges. Nothing beyond a view of a larger image is read.
   cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
                    cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
-  // Eqs 17-20 with the default mode's curve: E = I + sharpening (I - f) + beta (LUT(f) - f).
-  const double s = params.sharpening;
-  const double b = result.poor_quality ? params.beta : 0.0;
+  if (f.data == result.image.data) {
+    return result;
+  }
   const ToneLut curve = toneCurve8Bit(f, params, result.poor_quality, starts, scratch);
-  result.image = output;
-  result.image.create(gray.size(), CV_8UC1);
   if (s == -1.0) {
     // E = f + beta (LUT(f) - f): one table of f.
     std::uint8_t entries[256];

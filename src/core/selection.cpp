@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace enhanced_orb {
 namespace {
@@ -31,17 +32,24 @@ void levelBudgets(int total, int n_levels, double scale_factor, std::vector<int>
 // [0, 65535] (the extractor's corners): (65535 - response) << 32 | y << 16 | x, so that ascending
 // keys are `stronger` order. False, with `keys` unspecified, for any other keypoint.
 bool packedStrengthKeys(const std::vector<cv::KeyPoint>& keypoints, std::vector<std::uint64_t>& keys) {
+  // v as an integer in [0, 65535], or -1 when it is not one (NaN fails the range test). Converting
+  // and back is the whole-number test: a conversion truncates, exactly for these values.
+  auto whole = [](float v) {
+    if (!(v >= 0.0f && v <= 65535.0f)) {
+      return -1;
+    }
+    const int i = static_cast<int>(v);
+    return static_cast<float>(i) == v ? i : -1;
+  };
   keys.resize(keypoints.size());
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const cv::KeyPoint& kp = keypoints[i];
-    const float r = kp.response;
-    if (!(r >= 0.0f && r <= 65535.0f && kp.pt.x >= 0.0f && kp.pt.x <= 65535.0f && kp.pt.y >= 0.0f &&
-          kp.pt.y <= 65535.0f) ||
-        r != std::floor(r) || kp.pt.x != std::floor(kp.pt.x) || kp.pt.y != std::floor(kp.pt.y)) {
+    const int r = whole(kp.response), x = whole(kp.pt.x), y = whole(kp.pt.y);
+    if ((r | x | y) < 0) {
       return false;
     }
-    keys[i] = (static_cast<std::uint64_t>(65535 - static_cast<int>(r)) << 32) |
-              (static_cast<std::uint64_t>(kp.pt.y) << 16) | static_cast<std::uint64_t>(kp.pt.x);
+    keys[i] = (static_cast<std::uint64_t>(65535 - r) << 32) | (static_cast<std::uint64_t>(y) << 16) |
+              static_cast<std::uint64_t>(x);
   }
   return true;
 }
@@ -94,19 +102,37 @@ void bucketOrder(const std::vector<cv::KeyPoint>& keypoints, int cell, int cols,
     const int by = std::clamp(static_cast<int>(keypoints[i].pt.y) / cell, 0, rows - 1);
     bucket_of[i] = by * cols + bx;
   }
-  if (keypoints.size() < (1u << 16) && cols * rows < (1 << 15) && packedStrengthKeys(keypoints, keys)) {
-    // (bucket, 65535 - response, y, x) does not fit 64 bits: sort (bucket, 65535 - response,
-    // index) and break the rare ties of equal strength by position afterwards.
+  if (keypoints.size() < (1u << 16) && packedStrengthKeys(keypoints, keys)) {
+    // Counted into their buckets (in index order), then each bucket sorted by (65535 - response,
+    // index): the keys of one bucket are few, so this is cheaper than one sort of all of them by
+    // (bucket, strength, index), whose order it gives. The rare ties of equal strength are broken by
+    // position afterwards.
+    const int buckets = cols * rows;
+    std::vector<int>& start = ws.bucket_start;
+    start.assign(static_cast<size_t>(buckets) + 1, 0);
     for (size_t i = 0; i < keypoints.size(); ++i) {
-      keys[i] = (static_cast<std::uint64_t>(bucket_of[i]) << 48) | ((keys[i] >> 32) << 16) | i;
+      ++start[bucket_of[i] + 1];
     }
-    std::sort(keys.begin(), keys.end());
-    for (size_t i = 0; i < keys.size(); ++i) {
-      order[i] = static_cast<int>(keys[i] & 0xFFFF);
+    for (int b = 0; b < buckets; ++b) {
+      start[b + 1] += start[b];
     }
-    for (size_t i = 0; i < keys.size();) {
+    std::vector<int>& next = ws.bucket_next;
+    next.assign(start.begin(), start.end() - 1);
+    std::vector<std::uint64_t>& ranked = ws.ranked;
+    ranked.resize(keypoints.size());
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+      ranked[next[bucket_of[i]]++] = ((keys[i] >> 32) << 16) | i;
+    }
+    for (int b = 0; b < buckets; ++b) {
+      std::sort(ranked.begin() + start[b], ranked.begin() + start[b + 1]);
+    }
+    for (size_t i = 0; i < ranked.size(); ++i) {
+      order[i] = static_cast<int>(ranked[i] & 0xFFFF);
+    }
+    for (size_t i = 0; i < ranked.size();) {
       size_t j = i + 1;
-      while (j < keys.size() && (keys[j] >> 16) == (keys[i] >> 16)) {
+      while (j < ranked.size() && (ranked[j] >> 16) == (ranked[i] >> 16) &&
+             bucket_of[order[j]] == bucket_of[order[i]]) {
         ++j;
       }
       if (j - i > 1) {
