@@ -292,7 +292,8 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   const double b = result.poor_quality ? params.beta : 0.0;
   result.image = output;
   result.image.create(gray.size(), CV_8UC1);
-  cv::Mat& f = s == -1.0 && b == 0.0 && result.image.data != gray.data ? result.image : scratch.f8;
+  const bool f_is_result = s == -1.0 && b == 0.0 && result.image.data != gray.data;
+  cv::Mat& f = f_is_result ? result.image : scratch.f8;
   f.create(gray.size(), CV_8UC1);
   std::vector<int>& starts = scratch.starts;
   bandStarts(gray.rows, params.threads, starts);
@@ -301,7 +302,7 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   // view would round differently along its edges. Nothing beyond a view of a larger image is read.
   cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
                    cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
-  if (f.data == result.image.data) {
+  if (f_is_result) {
     return result;
   }
   const ToneLut curve = toneCurve8Bit(f, params, result.poor_quality, starts, scratch);
