@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -168,8 +169,8 @@ TEST(AdaptiveThreshold, HistogramOtsuEqualsCvThresholdOnEveryCellOfEveryLevel) {
 }
 
 TEST(Otsu, ManyCellsAtOnceEqualEachCellThroughCvThreshold) {
-  // Cells of every kind side by side: narrow and wide level ranges, at either end of [0, 255],
-  // two values, constant, empty; in counts that fill the side-by-side blocks partly and wholly.
+  // Cells of every kind worked on side by side: narrow and wide level ranges, at either end of
+  // [0, 255], two values, constant, empty; from one cell to the most otsuThresholds takes.
   cv::RNG rng(17);
   for (int count : {1, 2, 3, 5, 25, 32, 33, 64, 200, 1024}) {
     std::vector<cv::Mat> cells;
@@ -178,12 +179,9 @@ TEST(Otsu, ManyCellsAtOnceEqualEachCellThroughCvThreshold) {
       const int kind = rng.uniform(0, 6);
       cv::Mat cell(rng.uniform(1, 40), rng.uniform(1, 40), CV_8UC1);
       const int low = kind == 1 ? 0 : kind == 2 ? rng.uniform(200, 256) : rng.uniform(0, 200);
-      const int high = std::min(255, low + (kind == 0 ? 255 : rng.uniform(0, 40)));
+      const int high = kind == 4 ? low : std::min(255, low + (kind == 0 ? 255 : rng.uniform(0, 40)));
       for (auto it = cell.begin<uchar>(); it != cell.end<uchar>(); ++it) {
         *it = static_cast<uchar>(kind == 3 ? (rng.uniform(0, 2) ? low : high) : rng.uniform(low, high + 1));
-      }
-      if (kind == 4) {
-        cell.setTo(low);
       }
       if (kind == 5 && rng.uniform(0, 2)) {
         cell = cv::Mat();
