@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "enhanced_orb/params.h"
+#include "enhanced_orb/simd.h"
 
 namespace enhanced_orb {
 
@@ -22,8 +23,9 @@ using CellHistogram = std::array<std::uint32_t, 256>;
 // smallest t), in the floating-point steps of cv::threshold's THRESH_OTSU, so that both give the
 // same t. 0 for an empty or constant histogram.
 int otsuThreshold(const CellHistogram& histogram);
-// The same of `count` histograms at once (at most 1024), into thresholds[0..count).
-void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds);
+// The same of `count` histograms at once (at most 1024), into thresholds[0..count), by the kernel
+// of `level` (or the best one below it that this build has).
+void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds, SimdLevel level = activeSimdLevel());
 
 // The same of an 8-bit cell, through cv::threshold: the reference the histogram path is tested against.
 int otsuThreshold(const cv::Mat& cell);

@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "enhanced_orb/rotation_rounding.h"
 #include "enhanced_orb/simd.h"
 
 namespace enhanced_orb {
@@ -27,18 +28,6 @@ struct BriefTest {
 // are where a single bright or dark pixel, after cv::ORB's smoothing, sets its bit. Throws
 // std::runtime_error when what is read off does not reproduce cv::ORB's descriptors.
 const std::array<BriefTest, 256>& orbTests();
-
-// How the rotation of a test point (x, y) by an angle of cosine a and sine b rounds, in single
-// precision: x a - y b and x b + y a with each product rounded (kNone), or with the first or the
-// second product fused into the sum (one rounding), as a compiler contracts them where the CPU has
-// fused multiply-add: Debian's arm64 OpenCV is built so, its x86-64 one is not. At an exact .5 tie
-// the rounded point then moves by a pixel, and one bit of the descriptor may change.
-enum class Fusion { kNone, kFirst, kSecond };
-struct RotationRounding {
-  Fusion x = Fusion::kNone;  // x a - y b: kFirst is fma(x, a, -(y b)), kSecond fma(-y, b, x a)
-  Fusion y = Fusion::kNone;  // x b + y a: kFirst is fma(x, b, y a), kSecond fma(y, a, x b)
-};
-bool operator==(const RotationRounding& l, const RotationRounding& r);
 
 // The rounding the installed cv::ORB uses, found the first time it is needed (with orbTests()): on
 // keypoints whose angles put test points at rounding ties, the one of the five roundings whose

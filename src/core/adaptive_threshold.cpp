@@ -8,6 +8,9 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "kernels/dispatch.h"
+#include "kernels/otsu.h"
+
 namespace enhanced_orb {
 
 cv::Rect gridCell(cv::Size size, int grid_size, int cx, int cy) {
@@ -19,23 +22,25 @@ cv::Rect gridCell(cv::Size size, int grid_size, int cx, int cy) {
   return cv::Rect(x0, y0, edge(size.width, cx + 1) - x0, edge(size.height, cy + 1) - y0);
 }
 
-void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds) {
-  // The cells are worked on side by side, level by level: each cell's arithmetic is that of a
-  // single cell, and their divisions, which wait on one another within a cell, overlap.
+namespace {
+
+// The reference (and the kernel where no wider one is built): the cells side by side, level by
+// level, each cell's arithmetic that of a single cell, so that their divisions, which wait on one
+// another within a cell, overlap.
+void otsuThresholdsScalar(const std::uint32_t* histograms, int count, int* thresholds) {
   struct State {
     double scale, mu, q1, mu1, max_sigma;
     int best;
     bool empty;
   };
   State states[1024];
-  CV_Assert(count >= 0 && count <= 1024);
   for (int c = 0; c < count; ++c) {
     State& st = states[c];
     double n = 0.0;
     double mu = 0.0;  // eq 23: the mean level mu_T of the whole cell
     for (int i = 0; i < 256; ++i) {
-      n += histograms[c][i];
-      mu += i * static_cast<double>(histograms[c][i]);
+      n += histograms[256 * c + i];
+      mu += i * static_cast<double>(histograms[256 * c + i]);
     }
     st.empty = n == 0.0;
     st.scale = st.empty ? 0.0 : 1.0 / n;
@@ -51,7 +56,7 @@ void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds)
   for (int i = 0; i < 256; ++i) {
     for (int c = 0; c < count; ++c) {
       State& st = states[c];
-      const double p_i = histograms[c][i] * st.scale;  // eq 21
+      const double p_i = histograms[256 * c + i] * st.scale;  // eq 21
       st.mu1 *= st.q1;
       st.q1 += p_i;
       const double q2 = 1.0 - st.q1;
@@ -70,6 +75,19 @@ void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds)
   for (int c = 0; c < count; ++c) {
     thresholds[c] = states[c].empty ? 0 : states[c].best;
   }
+}
+
+}  // namespace
+
+void otsuThresholds(const CellHistogram* histograms, int count, int* thresholds, SimdLevel level) {
+  static_assert(sizeof(CellHistogram) == 256 * sizeof(std::uint32_t), "histograms lie end to end");
+  CV_Assert(count >= 0 && count <= 1024);
+  if (count == 0) {
+    return;
+  }
+  const kernels::OtsuKernel kernel = kernels::selectKernel<kernels::OtsuKernel>(
+      level, otsuThresholdsScalar, nullptr, ENHANCED_ORB_X86_KERNEL(kernels::otsuThresholdsAvx2));
+  kernel(histograms[0].data(), count, thresholds);
 }
 
 int otsuThreshold(const CellHistogram& histogram) {

@@ -8,6 +8,9 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "enhanced_orb/simd.h"
+#include "kernels/table_lookup.h"
+
 namespace enhanced_orb {
 
 cv::Mat toGray(const cv::Mat& image, PixelFormat format) {
@@ -297,7 +300,6 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
   f.create(gray.size(), CV_8UC1);
   std::vector<int>& starts = scratch.starts;
   bandStarts(gray.rows, params.threads, starts);
-  auto band = [&gray](int y0, int y1) { return cv::Rect(0, y0, gray.cols, y1 - y0); };
   // Eqs 8-9: f = I * h, by OpenCV's 8-bit (fixed-point) Gaussian in one pass: a band filtered as a
   // view would round differently along its edges. Nothing beyond a view of a larger image is read.
   cv::GaussianBlur(gray, f, cv::Size(params.blur_ksize, params.blur_ksize), params.blur_sigma, params.blur_sigma,
@@ -312,10 +314,11 @@ EnhanceResult enhance8Bit(const cv::Mat& gray, const EnhanceParams& params, cv::
     for (int i = 0; i < 256; ++i) {
       entries[i] = cv::saturate_cast<std::uint8_t>(i + b * (curve[i] - i));
     }
-    const cv::Mat table(1, 256, CV_8U, entries);  // a view: no allocation per frame
+    const kernels::TableLookupKernel lookup = kernels::tableLookupKernel(activeSimdLevel());
     forEachBand(starts, [&](int y0, int y1) {
-      cv::Mat dst = result.image(band(y0, y1));
-      cv::LUT(f(band(y0, y1)), table, dst);
+      for (int y = y0; y < y1; ++y) {
+        lookup(f.ptr<std::uint8_t>(y), f.cols, entries, result.image.ptr<std::uint8_t>(y));
+      }
     });
     return result;
   }

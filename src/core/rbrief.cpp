@@ -11,6 +11,7 @@
 
 #include "enhanced_orb/simd.h"
 #include "kernels/pyramid_rows.h"
+#include "kernels/rotated_offsets.h"
 
 namespace enhanced_orb {
 namespace {
@@ -228,13 +229,6 @@ void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::M
 
 namespace {
 
-// Round to nearest, ties to even, as cvRound (the CPU's default rounding) does: adding and
-// removing 1.5 * 2^23 leaves a float of magnitude below 2^22 rounded to an integer.
-inline float roundToInteger(float x) {
-  constexpr float kMagic = 12582912.0f;
-  return (x + kMagic) - kMagic;  // not folded: the build neither reassociates nor contracts
-}
-
 // The tests' points as two float arrays: point 2 t is test t's first, point 2 t + 1 its second.
 struct TestPoints {
   std::array<float, 512> x, y;
@@ -262,68 +256,6 @@ bool operator==(const RotationRounding& l, const RotationRounding& r) {
 
 namespace {
 
-// x a - y b and x b + y a as `kX` and `kY` round them (std::fma: one rounding; the build contracts
-// nothing else).
-template <Fusion kX>
-inline float rotatedX(float x, float y, float a, float b) {
-  if constexpr (kX == Fusion::kNone) {
-    return x * a - y * b;
-  } else if constexpr (kX == Fusion::kFirst) {
-    return std::fma(x, a, -(y * b));
-  } else {
-    return std::fma(-y, b, x * a);
-  }
-}
-
-template <Fusion kY>
-inline float rotatedY(float x, float y, float a, float b) {
-  if constexpr (kY == Fusion::kNone) {
-    return x * b + y * a;
-  } else if constexpr (kY == Fusion::kFirst) {
-    return std::fma(x, b, y * a);
-  } else {
-    return std::fma(y, a, x * b);
-  }
-}
-
-// Each test point's offset from the centre once rotated and rounded to the nearest pixel; the
-// loop is vectorised.
-template <Fusion kX, Fusion kY>
-void rotatedOffsets(const TestPoints& points, float a, float b, int step, int* offset) {
-  for (int j = 0; j < 512; ++j) {
-    const float ix = roundToInteger(rotatedX<kX>(points.x[j], points.y[j], a, b));
-    const float iy = roundToInteger(rotatedY<kY>(points.x[j], points.y[j], a, b));
-    offset[j] = static_cast<int>(iy) * step + static_cast<int>(ix);
-  }
-}
-
-using OffsetsFunction = void (*)(const TestPoints&, float, float, int, int*);
-
-template <Fusion kX>
-OffsetsFunction offsetsFunction(Fusion y) {
-  switch (y) {
-    case Fusion::kFirst:
-      return rotatedOffsets<kX, Fusion::kFirst>;
-    case Fusion::kSecond:
-      return rotatedOffsets<kX, Fusion::kSecond>;
-    case Fusion::kNone:
-      break;
-  }
-  return rotatedOffsets<kX, Fusion::kNone>;
-}
-
-OffsetsFunction offsetsFunction(RotationRounding rounding) {
-  switch (rounding.x) {
-    case Fusion::kFirst:
-      return offsetsFunction<Fusion::kFirst>(rounding.y);
-    case Fusion::kSecond:
-      return offsetsFunction<Fusion::kSecond>(rounding.y);
-    case Fusion::kNone:
-      break;
-  }
-  return offsetsFunction<Fusion::kNone>(rounding.y);
-}
-
 // The angle's cosine and sine as cv::ORB computes them: single precision throughout.
 inline void cosineAndSine(float degrees, float& a, float& b) {
   const float angle = degrees * static_cast<float>(CV_PI / 180.f);
@@ -331,14 +263,26 @@ inline void cosineAndSine(float degrees, float& a, float& b) {
   b = std::sin(angle);
 }
 
+// The five roundings a compiler may give the rotation (a sum has one product fused at most).
+constexpr RotationRounding kRoundings[] = {{Fusion::kNone, Fusion::kNone},
+                                           {Fusion::kFirst, Fusion::kFirst},
+                                           {Fusion::kFirst, Fusion::kSecond},
+                                           {Fusion::kSecond, Fusion::kFirst},
+                                           {Fusion::kSecond, Fusion::kSecond}};
+
 // Whether the five roundings put test point (x, y) on one pixel at this angle.
 bool roundingsAgree(float x, float y, float a, float b) {
-  const float rx = roundToInteger(rotatedX<Fusion::kNone>(x, y, a, b));
-  const float ry = roundToInteger(rotatedY<Fusion::kNone>(x, y, a, b));
-  return rx == roundToInteger(rotatedX<Fusion::kFirst>(x, y, a, b)) &&
-         rx == roundToInteger(rotatedX<Fusion::kSecond>(x, y, a, b)) &&
-         ry == roundToInteger(rotatedY<Fusion::kFirst>(x, y, a, b)) &&
-         ry == roundToInteger(rotatedY<Fusion::kSecond>(x, y, a, b));
+  constexpr int kStep = 1024;  // an offset then names the point's pixel
+  int first = 0;
+  kernels::rotatedOffsetsScalar(kRoundings[0])(&x, &y, 1, a, b, kStep, &first);
+  for (const RotationRounding& rounding : kRoundings) {
+    int offset = 0;
+    kernels::rotatedOffsetsScalar(rounding)(&x, &y, 1, a, b, kStep, &offset);
+    if (offset != first) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // Keypoints (many positions per angle) at angles where the roundings disagree on some test point.
@@ -397,12 +341,7 @@ RotationRounding findRotationRounding() {
   cv::Mat smoothed;
   smoothForDescription(image, buffers, smoothed);
   cv::Mat ours(static_cast<int>(keypoints.size()), 32, CV_8UC1);
-  const RotationRounding candidates[] = {{Fusion::kNone, Fusion::kNone},
-                                         {Fusion::kFirst, Fusion::kFirst},
-                                         {Fusion::kFirst, Fusion::kSecond},
-                                         {Fusion::kSecond, Fusion::kFirst},
-                                         {Fusion::kSecond, Fusion::kSecond}};
-  for (const RotationRounding& candidate : candidates) {
+  for (const RotationRounding& candidate : kRoundings) {
     describe(smoothed, keypoints, ours, 0, candidate);
     if (cv::norm(ours, theirs, cv::NORM_HAMMING) == 0) {
       return candidate;
@@ -422,14 +361,14 @@ void describe(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoint
               RotationRounding rounding) {
   const std::array<BriefTest, 256>& tests = g_tests ? *g_tests : orbTests();
   const TestPoints& points = testPoints(tests);
-  const OffsetsFunction offsets = offsetsFunction(rounding);
+  const kernels::RotatedOffsetsKernel offsets = kernels::rotatedOffsetsKernel(activeSimdLevel(), rounding);
   const int step = static_cast<int>(smoothed.step);
   alignas(64) int offset[512];
   for (size_t k = 0; k < keypoints.size(); ++k) {
     const cv::KeyPoint& kp = keypoints[k];
     float a, b;
     cosineAndSine(kp.angle, a, b);
-    offsets(points, a, b, step, offset);
+    offsets(points.x.data(), points.y.data(), 512, a, b, step, offset);
     const std::uint8_t* centre = smoothed.ptr<std::uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
     std::uint8_t* out = descriptors.ptr<std::uint8_t>(first_row + static_cast<int>(k));
     for (int byte = 0; byte < 32; ++byte) {

@@ -170,7 +170,8 @@ TEST(AdaptiveThreshold, HistogramOtsuEqualsCvThresholdOnEveryCellOfEveryLevel) {
 
 TEST(Otsu, ManyCellsAtOnceEqualEachCellThroughCvThreshold) {
   // Cells of every kind worked on side by side: narrow and wide level ranges, at either end of
-  // [0, 255], two values, constant, empty; from one cell to the most otsuThresholds takes.
+  // [0, 255], two values, constant, empty; from one cell to the most otsuThresholds takes; by the
+  // kernel of every instruction set.
   cv::RNG rng(17);
   for (int count : {1, 2, 3, 5, 25, 32, 33, 64, 200, 1024}) {
     std::vector<cv::Mat> cells;
@@ -189,10 +190,13 @@ TEST(Otsu, ManyCellsAtOnceEqualEachCellThroughCvThreshold) {
       cells.push_back(cell);
       histograms.push_back(cell.empty() ? CellHistogram{} : cellHistograms(cell, 1).front());
     }
-    std::vector<int> thresholds(static_cast<size_t>(count), -1);
-    otsuThresholds(histograms.data(), count, thresholds.data());
-    for (int c = 0; c < count; ++c) {
-      ASSERT_EQ(thresholds[c], otsuThreshold(cells[c])) << "cell " << c << " of " << count;
+    for (SimdLevel level : supportedSimdLevels()) {
+      std::vector<int> thresholds(static_cast<size_t>(count) + 1, -1);
+      otsuThresholds(histograms.data(), count, thresholds.data(), level);
+      for (int c = 0; c < count; ++c) {
+        ASSERT_EQ(thresholds[c], otsuThreshold(cells[c])) << toString(level) << ", cell " << c << " of " << count;
+      }
+      ASSERT_EQ(thresholds[count], -1) << toString(level) << ": written past " << count << " cells";
     }
   }
 }

@@ -19,7 +19,9 @@
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
 #include "kernels/pyramid_rows.h"
+#include "kernels/rotated_offsets.h"
 #include "kernels/suppression.h"
+#include "kernels/table_lookup.h"
 #include "linear_resize.h"
 #include "reference_extractor.h"
 #include "test_images.h"
@@ -362,6 +364,85 @@ TEST(Descriptors, RotationRoundsAsTheInstalledCvOrbAtTies) {
     }
   }
   EXPECT_EQ(others_differ, 8) << "some other rounding gives the same descriptors on these keypoints";
+}
+
+// Every rounding of the rotation (rbrief.h) at every instruction set gives the scalar kernel's
+// offsets: on points of the pattern's range, with cosine and sine chosen to put one point's rotated
+// x or y within a few ulps of a .5 tie, where the roundings differ (so a kernel rounding otherwise
+// would fail), and on array lengths that leave a tail shorter than a vector.
+TEST(Kernels, RotatedOffsetsOfEveryInstructionSetEqualTheScalarReference) {
+  constexpr int kPoints = 512, kStep = 777;
+  cv::RNG rng(17);
+  std::vector<float> x(kPoints), y(kPoints);
+  for (int j = 0; j < kPoints; ++j) {
+    x[j] = static_cast<float>(rng.uniform(-13, 14));
+    y[j] = static_cast<float>(rng.uniform(-13, 14));
+  }
+  std::vector<int> expected(kPoints), got(kPoints), unfused(kPoints);
+  int differ = 0;  // cases where some fused rounding moves a point from where kNone puts it
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int j = trial % kPoints;
+    const float tie = static_cast<float>(rng.uniform(-9, 9)) + 0.5f;
+    float a = rng.uniform(-1.f, 1.f), b = rng.uniform(-1.f, 1.f);
+    if (trial % 2 == 0 && y[j] != 0) {
+      b = (x[j] * a - tie) / y[j];  // x a - y b near the tie
+    } else if (y[j] != 0) {
+      a = (tie - x[j] * b) / y[j];  // x b + y a near the tie
+    }
+    kernels::rotatedOffsetsScalar(RotationRounding{})(x.data(), y.data(), kPoints, a, b, kStep, unfused.data());
+    for (Fusion fx : {Fusion::kNone, Fusion::kFirst, Fusion::kSecond}) {
+      for (Fusion fy : {Fusion::kNone, Fusion::kFirst, Fusion::kSecond}) {
+        const RotationRounding rounding{fx, fy};
+        kernels::rotatedOffsetsScalar(rounding)(x.data(), y.data(), kPoints, a, b, kStep, expected.data());
+        differ += expected != unfused ? 1 : 0;
+        for (SimdLevel level : supportedSimdLevels()) {
+          for (int n : {kPoints, 13, 7}) {
+            std::fill(got.begin(), got.end(), -1);
+            kernels::rotatedOffsetsKernel(level, rounding)(x.data(), y.data(), n, a, b, kStep, got.data());
+            ASSERT_TRUE(std::equal(got.begin(), got.begin() + n, expected.begin()))
+                << toString(level) << ", rounding " << static_cast<int>(fx) << static_cast<int>(fy) << ", n " << n
+                << ", a " << a << ", b " << b;
+            if (n < kPoints) {
+              ASSERT_EQ(got[n], -1) << toString(level) << ": written past n = " << n;
+            }
+          }
+        }
+      }
+    }
+  }
+  RecordProperty("rounding_cases_that_differ", differ);
+  EXPECT_GT(differ, 400) << "the cases hardly put any point at a tie";
+}
+
+// The tone curve's table lookup of every instruction set equals cv::LUT: random tables (every entry
+// of each 16-entry slice read), rows of every pixel value, of every length modulo the vector, and
+// 1 pixel.
+TEST(Kernels, TableLookupOfEveryInstructionSetEqualsCvLut) {
+  cv::RNG rng(5);
+  cv::Mat pixels(1, 256 * 3 + 45, CV_8UC1);
+  for (int x = 0; x < pixels.cols; ++x) {
+    pixels.at<std::uint8_t>(0, x) = static_cast<std::uint8_t>(x < 256 ? x : rng.uniform(0, 256));
+  }
+  for (int trial = 0; trial < 20; ++trial) {
+    cv::Mat table(1, 256, CV_8UC1);
+    rng.fill(table, cv::RNG::UNIFORM, 0, 256);
+    if (trial == 0) {
+      table.setTo(255);  // every entry's high bit set
+    }
+    cv::Mat expected;
+    cv::LUT(pixels, table, expected);
+    for (SimdLevel level : supportedSimdLevels()) {
+      for (int n : {pixels.cols, pixels.cols - 1, 33, 32, 31, 1}) {
+        cv::Mat got(pixels.size(), CV_8UC1, cv::Scalar(7));
+        kernels::tableLookupKernel(level)(pixels.ptr(), n, table.ptr(), got.ptr());
+        ASSERT_EQ(cv::norm(got.colRange(0, n), expected.colRange(0, n), cv::NORM_INF), 0.0)
+            << toString(level) << ", n " << n << ", trial " << trial;
+        if (n < pixels.cols) {
+          ASSERT_EQ(got.at<std::uint8_t>(0, n), 7) << toString(level) << ": written past n = " << n;
+        }
+      }
+    }
+  }
 }
 
 TEST(Kernels, PortableBuildsHaveNoWiderKernels) {
