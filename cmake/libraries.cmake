@@ -9,7 +9,8 @@ option(ENHANCED_ORB_PORTABLE "Build only the portable extraction kernels (no AVX
 set(ENHANCED_ORB_KERNELS_DIR ${ENHANCED_ORB_ROOT}/src/core/kernels)
 set(CORE_KERNELS ${ENHANCED_ORB_KERNELS_DIR}/fast_score_scalar.cpp ${ENHANCED_ORB_KERNELS_DIR}/fast_score_vector128.cpp
   ${ENHANCED_ORB_KERNELS_DIR}/suppression_scalar.cpp ${ENHANCED_ORB_KERNELS_DIR}/pyramid_rows_scalar.cpp
-  ${ENHANCED_ORB_KERNELS_DIR}/rotated_offsets_scalar.cpp ${ENHANCED_ORB_KERNELS_DIR}/table_lookup_scalar.cpp)
+  ${ENHANCED_ORB_KERNELS_DIR}/rotated_offsets_scalar.cpp ${ENHANCED_ORB_KERNELS_DIR}/table_lookup_scalar.cpp
+  ${ENHANCED_ORB_KERNELS_DIR}/patch_moments_scalar.cpp)
 set(ENHANCED_ORB_X86_KERNELS OFF)
 set(ENHANCED_ORB_NEON_KERNELS OFF)
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "aarch64|arm64|ARM64")
@@ -25,7 +26,8 @@ if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64" AND NOT ENHANCED_ORB_PORTABLE)
   set(ENHANCED_ORB_X86_KERNELS ON)
   set(X86_KERNELS_AVX2 ${ENHANCED_ORB_KERNELS_DIR}/fast_score_avx2.cpp ${ENHANCED_ORB_KERNELS_DIR}/suppression_avx2.cpp
     ${ENHANCED_ORB_KERNELS_DIR}/pyramid_rows_avx2.cpp ${ENHANCED_ORB_KERNELS_DIR}/rotated_offsets_avx2.cpp
-    ${ENHANCED_ORB_KERNELS_DIR}/table_lookup_avx2.cpp ${ENHANCED_ORB_KERNELS_DIR}/otsu_avx2.cpp)
+    ${ENHANCED_ORB_KERNELS_DIR}/table_lookup_avx2.cpp ${ENHANCED_ORB_KERNELS_DIR}/otsu_avx2.cpp
+    ${ENHANCED_ORB_KERNELS_DIR}/patch_moments_avx2.cpp)
   set_source_files_properties(${X86_KERNELS_AVX2} PROPERTIES COMPILE_OPTIONS "-mavx2;-mfma")
   list(APPEND CORE_KERNELS ${X86_KERNELS_AVX2})
 endif()

@@ -18,6 +18,7 @@
 #include "enhanced_orb/rbrief.h"
 #include "enhanced_orb/simd.h"
 #include "kernels/fast_score.h"
+#include "kernels/patch_moments.h"
 #include "kernels/pyramid_rows.h"
 #include "kernels/rotated_offsets.h"
 #include "kernels/suppression.h"
@@ -441,6 +442,41 @@ TEST(Kernels, TableLookupOfEveryInstructionSetEqualsCvLut) {
           ASSERT_EQ(got.at<std::uint8_t>(0, n), 7) << toString(level) << ": written past n = " << n;
         }
       }
+    }
+  }
+}
+
+// The patch moments of every instruction set equal the scalar reference's: on random pixels and
+// weights, and at the extremes (every pixel 255, every weight 15 or -15), where a 16-bit pairwise
+// sum would overflow if the products were wider.
+TEST(Kernels, PatchMomentsOfEveryInstructionSetEqualTheScalarReference) {
+  constexpr int kWeights = kernels::kMomentRows * kernels::kMomentColumns;
+  cv::RNG rng(29);
+  cv::Mat image(kernels::kMomentRows + 4, 50, CV_8UC1);
+  std::vector<std::int8_t> u(kWeights), v(kWeights);
+  for (int trial = 0; trial < 300; ++trial) {
+    rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+    for (int i = 0; i < kWeights; ++i) {
+      u[i] = static_cast<std::int8_t>(rng.uniform(-15, 16));
+      v[i] = static_cast<std::int8_t>(rng.uniform(-15, 16));
+    }
+    if (trial < 2) {
+      image.setTo(255);
+      std::fill(u.begin(), u.end(), static_cast<std::int8_t>(trial == 0 ? 15 : -15));
+      std::fill(v.begin(), v.end(), static_cast<std::int8_t>(trial == 0 ? -15 : 15));
+    }
+    const std::uint8_t* corner = image.ptr(rng.uniform(0, 4)) + rng.uniform(0, 18);
+    std::int32_t m10 = 0, m01 = 0;
+    kernels::patchMomentsScalar(corner, static_cast<std::ptrdiff_t>(image.step), u.data(), v.data(), &m10, &m01);
+    if (trial < 2) {
+      ASSERT_EQ(m10, (trial == 0 ? 15 : -15) * 255 * kWeights);
+    }
+    for (SimdLevel level : supportedSimdLevels()) {
+      std::int32_t got10 = 0, got01 = 0;
+      kernels::patchMomentsKernel(level)(corner, static_cast<std::ptrdiff_t>(image.step), u.data(), v.data(), &got10,
+                                         &got01);
+      ASSERT_EQ(got10, m10) << toString(level) << ", trial " << trial;
+      ASSERT_EQ(got01, m01) << toString(level) << ", trial " << trial;
     }
   }
 }
