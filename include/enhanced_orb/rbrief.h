@@ -36,7 +36,7 @@ RotationRounding orbRotationRounding();
 
 // What smoothForDescription reuses from call to call.
 struct SmoothingBuffers {
-  cv::Mat bordered;         // the level with a 3-pixel reflect-101 border
+  cv::Mat bordered;         // the level with a 3-pixel reflect-101 border (for OpenCV's smoothing)
   std::vector<float> rows;  // seven row passes
 };
 

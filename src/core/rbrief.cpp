@@ -162,21 +162,49 @@ void openCvSmoothing(const cv::Mat& bordered, cv::Size size, cv::Mat& smoothed) 
                    cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
 }
 
-void kernelSmoothing(const cv::Mat& bordered, cv::Size size, SimdLevel level, std::vector<float>& rows,
-                     cv::Mat& smoothed) {
-  const size_t width = static_cast<size_t>(size.width);
+// One row pass of the smoothing over `row` (n pixels) as if it had 3 more on each side by
+// reflect-101: the interior straight from the row, the 3 outputs at each end from a few pixels
+// copied with their reflections.
+void gaussianRowReflected(SimdLevel level, const std::uint8_t* row, int n, const float* k, float* out) {
+  constexpr int r = kSmoothingRadius;
+  auto padded = [&](int first, int count, std::uint8_t* pixels) {
+    for (int i = 0; i < count + 2 * r; ++i) {
+      pixels[i] = row[cv::borderInterpolate(first - r + i, n, cv::BORDER_REFLECT_101)];
+    }
+  };
+  std::uint8_t pixels[4 * r + 2 * r];
+  if (n < 4 * r) {  // too narrow for an interior: every output from reflected copies, a few at a time
+    for (int x = 0; x < n; x += 2 * r) {
+      const int count = std::min(2 * r, n - x);
+      padded(x, count, pixels);
+      kernels::gaussianRow(level, pixels, count, k, out + x);
+    }
+    return;
+  }
+  padded(0, r, pixels);
+  kernels::gaussianRow(level, pixels, r, k, out);
+  kernels::gaussianRow(level, row, n - 2 * r, k, out + r);  // outputs r .. n - r read the row only
+  padded(n - r, r, pixels);
+  kernels::gaussianRow(level, pixels, r, k, out + n - r);
+}
+
+// The smoothing by this project's kernels, reading the level itself (no bordered copy): row passes
+// into a ring of seven, the rows beyond the level reflected; output row y reads rows y - 3 .. y + 3.
+void kernelSmoothing(const cv::Mat& image, SimdLevel level, std::vector<float>& rows, cv::Mat& smoothed) {
+  constexpr int r = kSmoothingRadius;
+  const size_t width = static_cast<size_t>(image.cols);
   rows.resize(7 * width);
-  smoothed.create(size, CV_8UC1);
+  smoothed.create(image.size(), CV_8UC1);
   const float* k = gaussianTaps();
-  // Row passes into a ring of seven: output row y reads bordered rows y .. y + 6.
-  for (int y = 0; y < bordered.rows; ++y) {
-    kernels::gaussianRow(level, bordered.ptr<std::uint8_t>(y), size.width, k, rows.data() + (y % 7) * width);
-    if (y >= 6) {
+  for (int y = -r; y < image.rows + r; ++y) {
+    const int source = cv::borderInterpolate(y, image.rows, cv::BORDER_REFLECT_101);
+    gaussianRowReflected(level, image.ptr<std::uint8_t>(source), image.cols, k, rows.data() + ((y + r) % 7) * width);
+    if (y + r >= 6) {
       const float* ring[7];
       for (int j = 0; j < 7; ++j) {
-        ring[j] = rows.data() + ((y - 6 + j) % 7) * width;
+        ring[j] = rows.data() + ((y + r - 6 + j) % 7) * width;
       }
-      kernels::gaussianColumn(level, ring, size.width, k, smoothed.ptr<std::uint8_t>(y - 6));
+      kernels::gaussianColumn(level, ring, image.cols, k, smoothed.ptr<std::uint8_t>(y - r));
     }
   }
 }
@@ -200,7 +228,7 @@ bool kernelsMatchOpenCv() {
       cv::copyMakeBorder(probe, bordered, kSmoothingRadius, kSmoothingRadius, kSmoothingRadius, kSmoothingRadius,
                          cv::BORDER_REFLECT_101);
       openCvSmoothing(bordered, probe.size(), theirs);
-      kernelSmoothing(bordered, probe.size(), SimdLevel::kScalar, rows, ours);
+      kernelSmoothing(probe, SimdLevel::kScalar, rows, ours);
       if (cv::norm(theirs, ours, cv::NORM_INF) != 0) {
         return false;
       }
@@ -217,14 +245,14 @@ bool smoothsWithKernels(SimdLevel level) {
 }
 
 void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::Mat& smoothed) {
-  constexpr int r = kSmoothingRadius;
-  cv::copyMakeBorder(level, buffers.bordered, r, r, r, r, cv::BORDER_REFLECT_101);
   const SimdLevel simd = activeSimdLevel();
   if (smoothsWithKernels(simd)) {
-    kernelSmoothing(buffers.bordered, level.size(), simd, buffers.rows, smoothed);
-  } else {
-    openCvSmoothing(buffers.bordered, level.size(), smoothed);
+    kernelSmoothing(level, simd, buffers.rows, smoothed);
+    return;
   }
+  constexpr int r = kSmoothingRadius;
+  cv::copyMakeBorder(level, buffers.bordered, r, r, r, r, cv::BORDER_REFLECT_101);
+  openCvSmoothing(buffers.bordered, level.size(), smoothed);
 }
 
 namespace {

@@ -275,7 +275,8 @@ TEST(Pyramid, SmoothingEqualsCvOrbsAtEveryInstructionSet) {
     }
   }
   cv::RNG rng(4);
-  for (cv::Size size : {cv::Size(1, 1), cv::Size(5, 9), cv::Size(17, 3), cv::Size(33, 40), cv::Size(200, 61)}) {
+  for (cv::Size size : {cv::Size(1, 1), cv::Size(2, 7), cv::Size(5, 9), cv::Size(6, 2), cv::Size(11, 4),
+                        cv::Size(12, 13), cv::Size(13, 1), cv::Size(17, 3), cv::Size(33, 40), cv::Size(200, 61)}) {
     cv::Mat noise(size, CV_8UC1);
     rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
     levels.push_back(noise);
