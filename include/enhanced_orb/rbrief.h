@@ -36,7 +36,7 @@ RotationRounding orbRotationRounding();
 
 // What smoothForDescription reuses from call to call.
 struct SmoothingBuffers {
-  cv::Mat bordered;         // the level with a 3-pixel reflect-101 border (for OpenCV's smoothing)
+  cv::Mat bordered;         // the level (a row with the kernels) with a 3-pixel reflect-101 border
   std::vector<float> rows;  // seven row passes
 };
 

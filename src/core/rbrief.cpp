@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -162,49 +163,37 @@ void openCvSmoothing(const cv::Mat& bordered, cv::Size size, cv::Mat& smoothed) 
                    cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
 }
 
-// One row pass of the smoothing over `row` (n pixels) as if it had 3 more on each side by
-// reflect-101: the interior straight from the row, the 3 outputs at each end from a few pixels
-// copied with their reflections.
-void gaussianRowReflected(SimdLevel level, const std::uint8_t* row, int n, const float* k, float* out) {
+// The smoothing by this project's kernels, reading the level itself: each row, reflected rows
+// beyond the level's first and last, is copied with its reflect-101 border into one padded row
+// (which stays in cache, unlike a bordered copy of the level) for the row pass into a ring of
+// seven; output row y reads rows y - 3 .. y + 3.
+void kernelSmoothing(const cv::Mat& image, SimdLevel level, SmoothingBuffers& buffers, cv::Mat& smoothed) {
   constexpr int r = kSmoothingRadius;
-  auto padded = [&](int first, int count, std::uint8_t* pixels) {
-    for (int i = 0; i < count + 2 * r; ++i) {
-      pixels[i] = row[cv::borderInterpolate(first - r + i, n, cv::BORDER_REFLECT_101)];
-    }
-  };
-  std::uint8_t pixels[4 * r + 2 * r];
-  if (n < 4 * r) {  // too narrow for an interior: every output from reflected copies, a few at a time
-    for (int x = 0; x < n; x += 2 * r) {
-      const int count = std::min(2 * r, n - x);
-      padded(x, count, pixels);
-      kernels::gaussianRow(level, pixels, count, k, out + x);
-    }
-    return;
-  }
-  padded(0, r, pixels);
-  kernels::gaussianRow(level, pixels, r, k, out);
-  kernels::gaussianRow(level, row, n - 2 * r, k, out + r);  // outputs r .. n - r read the row only
-  padded(n - r, r, pixels);
-  kernels::gaussianRow(level, pixels, r, k, out + n - r);
-}
-
-// The smoothing by this project's kernels, reading the level itself (no bordered copy): row passes
-// into a ring of seven, the rows beyond the level reflected; output row y reads rows y - 3 .. y + 3.
-void kernelSmoothing(const cv::Mat& image, SimdLevel level, std::vector<float>& rows, cv::Mat& smoothed) {
-  constexpr int r = kSmoothingRadius;
-  const size_t width = static_cast<size_t>(image.cols);
-  rows.resize(7 * width);
+  const int width = image.cols;
+  buffers.rows.resize(7 * static_cast<size_t>(width));
+  buffers.bordered.create(1, width + 2 * r, CV_8UC1);
   smoothed.create(image.size(), CV_8UC1);
+  std::uint8_t* padded = buffers.bordered.ptr<std::uint8_t>();
+  int left[r], right[r];  // the columns the border repeats
+  for (int i = 0; i < r; ++i) {
+    left[i] = cv::borderInterpolate(i - r, width, cv::BORDER_REFLECT_101);
+    right[i] = cv::borderInterpolate(width + i, width, cv::BORDER_REFLECT_101);
+  }
   const float* k = gaussianTaps();
   for (int y = -r; y < image.rows + r; ++y) {
-    const int source = cv::borderInterpolate(y, image.rows, cv::BORDER_REFLECT_101);
-    gaussianRowReflected(level, image.ptr<std::uint8_t>(source), image.cols, k, rows.data() + ((y + r) % 7) * width);
+    const std::uint8_t* row = image.ptr<std::uint8_t>(cv::borderInterpolate(y, image.rows, cv::BORDER_REFLECT_101));
+    std::memcpy(padded + r, row, static_cast<size_t>(width));
+    for (int i = 0; i < r; ++i) {
+      padded[i] = row[left[i]];
+      padded[r + width + i] = row[right[i]];
+    }
+    kernels::gaussianRow(level, padded, width, k, buffers.rows.data() + ((y + r) % 7) * static_cast<size_t>(width));
     if (y + r >= 6) {
       const float* ring[7];
       for (int j = 0; j < 7; ++j) {
-        ring[j] = rows.data() + ((y + r - 6 + j) % 7) * width;
+        ring[j] = buffers.rows.data() + ((y + r - 6 + j) % 7) * static_cast<size_t>(width);
       }
-      kernels::gaussianColumn(level, ring, image.cols, k, smoothed.ptr<std::uint8_t>(y - r));
+      kernels::gaussianColumn(level, ring, width, k, smoothed.ptr<std::uint8_t>(y - r));
     }
   }
 }
@@ -224,11 +213,11 @@ bool kernelsMatchOpenCv() {
     }
     for (const cv::Mat& probe : {image, ramp}) {
       cv::Mat bordered, theirs, ours;
-      std::vector<float> rows;
+      SmoothingBuffers buffers;
       cv::copyMakeBorder(probe, bordered, kSmoothingRadius, kSmoothingRadius, kSmoothingRadius, kSmoothingRadius,
                          cv::BORDER_REFLECT_101);
       openCvSmoothing(bordered, probe.size(), theirs);
-      kernelSmoothing(probe, SimdLevel::kScalar, rows, ours);
+      kernelSmoothing(probe, SimdLevel::kScalar, buffers, ours);
       if (cv::norm(theirs, ours, cv::NORM_INF) != 0) {
         return false;
       }
@@ -247,7 +236,7 @@ bool smoothsWithKernels(SimdLevel level) {
 void smoothForDescription(const cv::Mat& level, SmoothingBuffers& buffers, cv::Mat& smoothed) {
   const SimdLevel simd = activeSimdLevel();
   if (smoothsWithKernels(simd)) {
-    kernelSmoothing(level, simd, buffers.rows, smoothed);
+    kernelSmoothing(level, simd, buffers, smoothed);
     return;
   }
   constexpr int r = kSmoothingRadius;
