@@ -216,29 +216,45 @@ const std::array<std::uint32_t, 511>& edgeWeights() {
   return table;
 }
 
-// Rows [y0, y1) of edgeWeightedHistogram, added to `counts`. Even rows are summed into two
-// histograms by alternating columns, so that neighbouring samples in one bin do not wait on each
-// other; integer sums make the split exact.
+// Rows [y0, y1) of edgeWeightedHistogram, added to `counts`. Each even row's gradients are taken a
+// run of columns at a time (one plain loop the compiler vectorises, every column, the edges
+// clamped apart), then its even columns are summed into two histograms by alternating samples, so
+// that neighbouring samples in one bin do not wait on each other; integer sums make the split exact.
 void addEdgeWeights(const cv::Mat& f, int y0, int y1, std::array<std::uint64_t, 256>& counts) {
   const std::array<std::uint32_t, 511>& weight = edgeWeights();
   std::array<std::uint64_t, 256> other{};
   const int last_x = f.cols - 1;
+  constexpr int kRun = 512;
+  std::uint16_t gradient[kRun];
   for (int y = y0 + (y0 & 1); y < y1; y += 2) {
     const std::uint8_t* above = f.ptr<std::uint8_t>(std::max(y - 1, 0));
     const std::uint8_t* row = f.ptr<std::uint8_t>(y);
     const std::uint8_t* below = f.ptr<std::uint8_t>(std::min(y + 1, f.rows - 1));
-    auto add = [&](std::array<std::uint64_t, 256>& h, int x) {
-      const int dx = std::abs(row[std::min(x + 1, last_x)] - row[std::max(x - 1, 0)]);
-      const int dy = std::abs(below[x] - above[x]);
-      h[row[x]] += weight[dx + dy];
+    auto clamped = [&](int x) {
+      return std::abs(row[std::min(x + 1, last_x)] - row[std::max(x - 1, 0)]) + std::abs(below[x] - above[x]);
     };
-    int x = 0;
-    for (; x + 2 <= last_x; x += 4) {
-      add(counts, x);
-      add(other, x + 2);
-    }
-    for (; x <= last_x; x += 2) {
-      add(counts, x);
+    for (int start = 0; start <= last_x; start += kRun) {  // even: the samples' parity holds
+      const int end = std::min(start + kRun, last_x + 1);
+      const int from = std::max(start, 1);
+      const int to = std::min(end, last_x);  // columns [from, to) have both horizontal neighbours
+      for (int x = from; x < to; ++x) {
+        gradient[x - start] =
+            static_cast<std::uint16_t>(std::abs(row[x + 1] - row[x - 1]) + std::abs(below[x] - above[x]));
+      }
+      if (start == 0) {
+        gradient[0] = static_cast<std::uint16_t>(clamped(0));
+      }
+      if (end == last_x + 1) {
+        gradient[last_x - start] = static_cast<std::uint16_t>(clamped(last_x));
+      }
+      int x = start;
+      for (; x + 2 < end; x += 4) {
+        counts[row[x]] += weight[gradient[x - start]];
+        other[row[x + 2]] += weight[gradient[x + 2 - start]];
+      }
+      for (; x < end; x += 2) {
+        counts[row[x]] += weight[gradient[x - start]];
+      }
     }
   }
   for (int i = 0; i < 256; ++i) {
