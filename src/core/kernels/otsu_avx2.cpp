@@ -12,7 +12,7 @@ namespace enhanced_orb {
 namespace kernels {
 namespace {
 
-constexpr int kMaxGroups = 256;  // 1024 cells
+constexpr int kGroups = 8;  // cells worked on side by side: 32, enough for their divisions to overlap
 
 // Four cells' state: the scalar reference's, lane by lane.
 struct Group {
@@ -21,11 +21,10 @@ struct Group {
   __m256d scale, mu, q1, mu1, max_sigma, best;
 };
 
-}  // namespace
-
-void otsuThresholdsAvx2(const std::uint32_t* histograms, int count, int* thresholds) {
+// At most 4 kGroups cells.
+void otsuBlock(const std::uint32_t* histograms, int count, int* thresholds) {
   static const std::uint32_t kZeros[256] = {};
-  static thread_local Group groups[kMaxGroups];
+  Group groups[kGroups];
   const int n_groups = (count + 3) / 4;
   for (int g = 0; g < n_groups; ++g) {
     Group& group = groups[g];
@@ -95,6 +94,14 @@ void otsuThresholdsAvx2(const std::uint32_t* histograms, int count, int* thresho
     for (int lane = 0; lane < 4 && 4 * g + lane < count; ++lane) {
       thresholds[4 * g + lane] = scale[lane] == 0.0 ? 0 : static_cast<int>(best[lane]);
     }
+  }
+}
+
+}  // namespace
+
+void otsuThresholdsAvx2(const std::uint32_t* histograms, int count, int* thresholds) {
+  for (int c = 0; c < count; c += 4 * kGroups) {
+    otsuBlock(histograms + 256 * c, count - c < 4 * kGroups ? count - c : 4 * kGroups, thresholds + c);
   }
 }
 
