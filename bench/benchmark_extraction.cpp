@@ -324,19 +324,22 @@ void BM_Frame(benchmark::State& state) {
     p.orb.max_features = budget;
     p.orb.threads = threads;
     p.enhance.threads = threads;
-    const eo::OrbExtractor extractor(p);
     // The default mode as a camera's stream runs it: each frame judged (CameraMotion; the static
-    // EuRoC frames are judged still), then extracted; kDefaultMoving extracts as for a moving camera.
+    // EuRoC frames are judged still) and extracted in one call; kDefaultMoving extracts as for a
+    // moving camera (the judgment still runs: it gives the stream's lambda).
+    if (method == kDefaultMoving) {
+      p.orb.camera_motion = eo::MotionMode::kMoving;
+    }
+    const eo::OrbExtractor extractor(p);
     eo::CameraMotion motion;
     eo::ExtractOptions options;
     eo::Extraction out;
     auto run = [&](const cv::Mat& gray) {
       if (stream) {
-        const eo::StreamJudgment judged = motion.judge(gray);
-        options.camera_moving = judged.moving || method == kDefaultMoving;
-        options.stream_lambda = judged.stream_lambda;
+        extractor.extract(gray, motion, options, out);
+      } else {
+        extractor.extract(gray, options, out);
       }
-      extractor.extract(gray, options, out);
     };
     // One pass over the frames first: the workspaces reach the sizes these frames need, and the
     // allocations counted are those of a stream that has run for a while.

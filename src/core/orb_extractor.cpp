@@ -69,9 +69,9 @@ void OrbExtractor::release(std::unique_ptr<Workspace> ws) const {
 
 namespace {
 
-// Runs work(level) for levels 0..n-1 on up to `threads` threads: each takes the next level not yet
-// taken (the largest first) until none is left, so that no thread waits on another's share.
-// Exceptions are passed on to the caller.
+// Runs work(level) for levels (or any tasks) 0..n-1 on up to `threads` threads: each takes the
+// next level not yet taken (the largest first) until none is left, so that no thread waits on
+// another's share. Exceptions are passed on to the caller.
 template <typename Work>
 void forEachLevel(int n, int threads, Work work) {
   const int count = std::min(threads, n);
@@ -81,26 +81,32 @@ void forEachLevel(int n, int threads, Work work) {
     }
     return;
   }
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
+  struct Shared {
+    Shared(int count, Work* w) : n(count), work(w) {}
+    int n;
+    Work* work;
+    std::atomic<int> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+  } shared(n, &work);
+  // One pointer captured: the std::function cv::parallel_for_ takes keeps it without a heap allocation.
   cv::parallel_for_(
       cv::Range(0, count),
-      [&](const cv::Range& range) {
-        for (int s = range.start; s < range.end; ++s) {
+      [s = &shared](const cv::Range& range) {
+        for (int k = range.start; k < range.end; ++k) {
           try {
-            for (int level = next++; level < n; level = next++) {
-              work(level);
+            for (int level = s->next++; level < s->n; level = s->next++) {
+              (*s->work)(level);
             }
           } catch (...) {
-            std::lock_guard<std::mutex> lock(failure_mutex);
-            failure = std::current_exception();
+            std::lock_guard<std::mutex> lock(s->failure_mutex);
+            s->failure = std::current_exception();
           }
         }
       },
       count);
-  if (failure) {
-    std::rethrow_exception(failure);
+  if (shared.failure) {
+    std::rethrow_exception(shared.failure);
   }
 }
 
@@ -294,15 +300,21 @@ std::unique_ptr<OrbExtractor::Workspace, std::function<void(OrbExtractor::Worksp
 
 void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, Extraction& out) const {
   checkInput(gray, options.mask);
-  out.camera_moving = params_.movingSelection(options.camera_moving);
   const Params params = params_.forFrame(options.camera_moving, options.stream_lambda);
-  const OrbParams& orb = params.orb;
   out.timings = StageTimings();
-  out.keypoints.clear();
   const auto ws = lease();
   Stopwatch clock;
   enhanceInto(gray, params, ws->enhancement, out);
   out.timings.enhance_ms = clock.lap();
+  extractEnhanced(params, options, *ws, out);
+}
+
+void OrbExtractor::extractEnhanced(const Params& params, const ExtractOptions& options, Workspace& ws,
+                                   Extraction& out) const {
+  out.camera_moving = params_.movingSelection(options.camera_moving);
+  out.keypoints.clear();
+  const OrbParams& orb = params.orb;
+  Stopwatch clock;
   Stopwatch wall;
   // With a noise floor, each level's budget is spread over its corners scoring at least the floor:
   // they are found with every cell's FAST threshold raised to it (FAST keeps a score above its
@@ -313,31 +325,67 @@ void OrbExtractor::extract(const cv::Mat& gray, const ExtractOptions& options, E
   out.noise = by_floor ? estimateNoise(out.image) : 0.0;
   const int least = by_floor ? std::clamp(static_cast<int>(std::ceil(orb.noise_floor * out.noise)) - 1, 0, 255) : 0;
   const double select_ms = clock.lap();  // the noise estimate, part of the selection
-  ws->pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
-  detectLevels(params, options.mask, least, *ws, out);
+  ws.pyramid.reset(out.image, orb.n_levels, orb.scale_factor);
+  detectLevels(params, options.mask, least, ws, out);
   clock.lap();
   if (orb.max_features > 0) {
     // One reference captured: std::function keeps it without a heap allocation.
-    const auto redetect = [&](int level) { detectLevel(params, options.mask, level, 0, *ws, out); };
+    const auto redetect = [&](int level) { detectLevel(params, options.mask, level, 0, ws, out); };
     const auto complete = [&redetect](size_t level) { redetect(static_cast<int>(level)); };
-    selectByBudget(orb, out.noise, ws->pyramid.sizes(), ws->keypoints, ws->selection,
+    selectByBudget(orb, out.noise, ws.pyramid.sizes(), ws.keypoints, ws.selection,
                    least > 0 ? std::function<void(size_t)>(complete) : nullptr);
   }
   out.timings.select_ms = select_ms + clock.lap();
-  describeLevels(orb, *ws, out);
-  keepPyramid(options.keep_pyramid, ws->pyramid, out);
-  addLevelTimings(*ws, ws->pyramid.count(), out.timings);
+  describeLevels(orb, ws, out);
+  keepPyramid(options.keep_pyramid, ws.pyramid, out);
+  addLevelTimings(ws, ws.pyramid.count(), out.timings);
   out.timings.extract_ms = wall.lap();
 }
 
 void OrbExtractor::extract(const cv::Mat& gray, CameraMotion& motion, ExtractOptions& options, Extraction& out) const {
-  Stopwatch clock;
-  const StreamJudgment stream = judgesMotion() ? motion.judge(gray) : StreamJudgment();
+  if (params_.orb.threads < 2 || !judgesMotion() || gray.empty()) {
+    Stopwatch clock;
+    const StreamJudgment stream = judgesMotion() ? motion.judge(gray) : StreamJudgment();
+    options.camera_moving = stream.moving;
+    options.stream_lambda = stream.stream_lambda;
+    const double judge_ms = clock.lap();
+    extract(gray, options, out);
+    out.timings.judge_ms = judge_ms;
+    return;
+  }
+  // Two threads: the frame is judged on one while the other enhances it as the last frame's
+  // judgment would have it (which the frame's own judgment nearly always repeats). Only the
+  // enhancement's quality test hangs on the judgment (Params::forFrame() sets its gamma_mode): where
+  // the frame's judgment decides the test otherwise, the frame is enhanced again.
+  checkInput(gray, options.mask);
+  const Params guess = params_.forFrame(motion.moving(), motion.streamLambda());
+  out.timings = StageTimings();
+  const auto ws = lease();
+  StreamJudgment stream;
+  double judge_ms = 0.0;
+  double enhance_ms = 0.0;
+  Stopwatch wall;
+  forEachLevel(2, 2, [&](int task) {
+    Stopwatch clock;
+    if (task == 0) {
+      stream = motion.judge(gray);
+      judge_ms = clock.lap();
+    } else {
+      enhanceInto(gray, guess, ws->enhancement, out);
+      enhance_ms = clock.lap();
+    }
+  });
+  out.timings.overlap_ms = std::max(0.0, judge_ms + enhance_ms - wall.lap());
   options.camera_moving = stream.moving;
   options.stream_lambda = stream.stream_lambda;
-  const double judge_ms = clock.lap();
-  extract(gray, options, out);
+  const Params params = params_.forFrame(stream.moving, stream.stream_lambda);
+  if (params.enhance_enabled && isPoorQuality(out.lambda, params.enhance) != out.poor_quality) {
+    enhanceInto(gray, params, ws->enhancement, out);
+    enhance_ms += wall.lap();
+  }
   out.timings.judge_ms = judge_ms;
+  out.timings.enhance_ms = enhance_ms;
+  extractEnhanced(params, options, *ws, out);
 }
 
 void OrbExtractor::describe(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const {

@@ -32,8 +32,9 @@ Runs the enhanced ORB extractor on each IMAGE (any format OpenCV reads; colour i
 and writes DIR/<stem>.yml (cv::FileStorage; DIR/<folder>/<stem>.yml when names repeat in several
 folders) with keypoints (N x 6 float: x, y, size, angle, response, octave), descriptors (N x 32
 uint8), thresholds (grid x grid int, level 0), lambda, poor_quality, inverted, camera_moving,
-judge_ms (the camera-motion judgment), enhance_ms, extract_ms and total_ms (the three: the whole
-call on the gray image). The IMAGEs are taken as one
+judge_ms (the camera-motion judgment), enhance_ms, extract_ms and total_ms (the whole call on the
+gray image: the three, less the time the judgment and the enhancement ran side by side with
+--threads 2 or more). The IMAGEs are taken as one
 camera's frames in the order given: with --camera-motion auto (the default) they decide whether the
 camera is judged moving. An image unrelated to the one before it (another scene) is not motion: it
 is reported as a new scene and the judgment stays as it was, so a folder of unrelated scenes, each

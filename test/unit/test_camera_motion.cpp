@@ -321,6 +321,7 @@ TEST(CameraMotion, ExtractorsFollowTheJudgment) {
   EXPECT_TRUE(options.camera_moving && streamed.camera_moving);
   EXPECT_EQ(cv::norm(streamed.descriptors, m.descriptors, cv::NORM_INF), 0.0);
   EXPECT_GT(streamed.timings.judge_ms, 0.0);
+  EXPECT_DOUBLE_EQ(streamed.timings.overlap_ms, 0.0);  // one thread: one stage after the other
   EXPECT_DOUBLE_EQ(streamed.timings.totalMs(), streamed.timings.convert_ms + streamed.timings.judge_ms +
                                                    streamed.timings.enhance_ms + streamed.timings.extract_ms);
   const OrbExtractor still_only(Params::baseline());
@@ -349,6 +350,52 @@ TEST(CameraMotion, ExtractorsFollowTheJudgment) {
   slam(second, cv::noArray(), keypoints, descriptors, lapping);
   ASSERT_EQ(keypoints.size(), m.keypoints.size());
   EXPECT_EQ(cv::norm(descriptors, m.descriptors, cv::NORM_INF), 0.0);
+}
+
+// With two threads a stream's frame is enhanced while it is judged, as the last frame's judgment
+// would have it: the same results as one thread, frame by frame, where the judgment changes (the
+// camera starts and stops, the light flickers across the quality test, the scene changes) too.
+TEST(CameraMotion, TwoThreadsEnhanceWhileJudgingWithTheResultsOfOne) {
+  cv::RNG rng(5);
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 4; ++i) {  // still
+    frames.push_back(underLight(view(scene(), 50, 50), 0.4, 1.5, rng));
+  }
+  for (int i = 0; i < 14; ++i) {  // moving: dim frames, contrasty ones (the curve turns on), dim again
+    cv::Mat f = view(scene(), 50 + 8.0 * i, 50 + 3.0 * i);
+    if (i >= 4 && i <= 11) {
+      f.convertTo(f, CV_8U, 3.0, -250.0);
+    } else {
+      f = underLight(f, 0.4, 1.5, rng);
+    }
+    frames.push_back(f);
+  }
+  frames.push_back(test::syntheticScene(cv::Size(640, 480), 77));  // another scene
+  for (int i = 0; i < 3; ++i) {
+    frames.push_back(frames.back().clone());
+  }
+  Params one_thread, two_threads;
+  two_threads.orb.threads = two_threads.enhance.threads = 2;
+  const OrbExtractor a(one_thread), b(two_threads);
+  CameraMotion motion_a, motion_b;
+  ExtractOptions options_a, options_b;
+  Extraction out_a, out_b;
+  int curve_changes = 0;
+  bool last_poor = false;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    a.extract(frames[i], motion_a, options_a, out_a);
+    b.extract(frames[i], motion_b, options_b, out_b);
+    EXPECT_EQ(out_a.camera_moving, out_b.camera_moving) << i;
+    EXPECT_EQ(out_a.poor_quality, out_b.poor_quality) << i;
+    EXPECT_EQ(cv::norm(out_a.image, out_b.image, cv::NORM_INF), 0.0) << i;
+    ASSERT_EQ(out_a.keypoints.size(), out_b.keypoints.size()) << i;
+    EXPECT_EQ(cv::norm(out_a.descriptors, out_b.descriptors, cv::NORM_INF), 0.0) << i;
+    EXPECT_GE(out_b.timings.overlap_ms, 0.0);
+    EXPECT_LE(out_b.timings.overlap_ms, std::min(out_b.timings.judge_ms, out_b.timings.enhance_ms) + 1e-9);
+    curve_changes += i > 0 && out_b.poor_quality != last_poor;
+    last_poor = out_b.poor_quality;
+  }
+  EXPECT_GE(curve_changes, 3) << "the stream changes the quality test's outcome";
 }
 
 // A moving camera's frame is enhanced with moving_gamma_mode (auto: the paper's quality test), a
