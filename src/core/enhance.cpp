@@ -230,22 +230,22 @@ void addEdgeWeights(const cv::Mat& f, int y0, int y1, std::array<std::uint64_t, 
     const std::uint8_t* above = f.ptr<std::uint8_t>(std::max(y - 1, 0));
     const std::uint8_t* row = f.ptr<std::uint8_t>(y);
     const std::uint8_t* below = f.ptr<std::uint8_t>(std::min(y + 1, f.rows - 1));
-    auto clamped = [&](int x) {
-      return std::abs(row[std::min(x + 1, last_x)] - row[std::max(x - 1, 0)]) + std::abs(below[x] - above[x]);
+    // |dx| + |dy| at column x, dx between columns `left` and `right` (x's neighbours, or x itself at an edge).
+    auto gradientAt = [&](int x, int left, int right) {
+      return static_cast<std::uint16_t>(std::abs(row[right] - row[left]) + std::abs(below[x] - above[x]));
     };
     for (int start = 0; start <= last_x; start += kRun) {  // even: the samples' parity holds
       const int end = std::min(start + kRun, last_x + 1);
       const int from = std::max(start, 1);
       const int to = std::min(end, last_x);  // columns [from, to) have both horizontal neighbours
       for (int x = from; x < to; ++x) {
-        gradient[x - start] =
-            static_cast<std::uint16_t>(std::abs(row[x + 1] - row[x - 1]) + std::abs(below[x] - above[x]));
+        gradient[x - start] = gradientAt(x, x - 1, x + 1);
       }
       if (start == 0) {
-        gradient[0] = static_cast<std::uint16_t>(clamped(0));
+        gradient[0] = gradientAt(0, 0, std::min(1, last_x));
       }
       if (end == last_x + 1) {
-        gradient[last_x - start] = static_cast<std::uint16_t>(clamped(last_x));
+        gradient[last_x - start] = gradientAt(last_x, std::max(last_x - 1, 0), last_x);
       }
       int x = start;
       for (; x + 2 < end; x += 4) {

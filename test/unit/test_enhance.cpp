@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -322,6 +323,31 @@ TEST(ToneCurve, EdgeWeightedHistogramIgnoresFlatRegions) {
                                         edgeWeightedHistogram(cv::Mat(5, 7, CV_8U, cv::Scalar(9)))}) {
     for (double w : none) {
       EXPECT_EQ(w, 0.0);
+    }
+  }
+}
+
+// On noise of many sizes (one column, runs of 512 columns and their ends): each even pixel of each
+// even row weighs round(64 sqrt(|dx| + |dy|)), its neighbours clamped to the image, into its bin.
+TEST(ToneCurve, EdgeWeightedHistogramWeighsEverySampleByItsClampedGradient) {
+  cv::RNG rng(3);
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(1, 6), cv::Size(2, 3), cv::Size(5, 4), cv::Size(512, 3),
+                              cv::Size(513, 4), cv::Size(1030, 5)}) {
+    cv::Mat f(size, CV_8U);
+    rng.fill(f, cv::RNG::UNIFORM, 0, 256);
+    WeightedHistogram expected{};
+    for (int y = 0; y < f.rows; y += 2) {
+      for (int x = 0; x < f.cols; x += 2) {
+        const auto at = [&](int yy, int xx) {
+          return static_cast<int>(f.at<uchar>(std::clamp(yy, 0, f.rows - 1), std::clamp(xx, 0, f.cols - 1)));
+        };
+        const int g = std::abs(at(y, x + 1) - at(y, x - 1)) + std::abs(at(y + 1, x) - at(y - 1, x));
+        expected[f.at<uchar>(y, x)] += std::round(64.0 * std::sqrt(static_cast<double>(g)));
+      }
+    }
+    const WeightedHistogram h = edgeWeightedHistogram(f);
+    for (int i = 0; i < 256; ++i) {
+      ASSERT_EQ(h[i], expected[i]) << size << " bin " << i;
     }
   }
 }
