@@ -10,6 +10,7 @@
 
 #include "enhanced_orb/simd.h"
 #include "kernels/table_lookup.h"
+#include "parallel.h"
 
 namespace enhanced_orb {
 
@@ -173,14 +174,11 @@ void forEachBand(const std::vector<int>& starts, Fn fn) {
     fn(starts.front(), starts.back());
     return;
   }
-  cv::parallel_for_(
-      cv::Range(0, bands),
-      [&](const cv::Range& range) {
-        for (int k = range.start; k < range.end; ++k) {
-          fn(starts[k], starts[k + 1]);
-        }
-      },
-      bands);
+  parallelFor(bands, [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      fn(starts[k], starts[k + 1]);
+    }
+  });
 }
 
 // Band edges for `bands` horizontal bands of about equal height.

@@ -12,6 +12,7 @@
 #include "enhanced_orb/adaptive_threshold.h"
 #include "enhanced_orb/enhance.h"
 #include "enhanced_orb/noise.h"
+#include "parallel.h"
 #include "pyramid_levels.h"
 #include "stopwatch.h"
 
@@ -81,32 +82,23 @@ void forEachLevel(int n, int threads, Work work) {
     }
     return;
   }
-  struct Shared {
-    Shared(int count, Work* w) : n(count), work(w) {}
-    int n;
-    Work* work;
-    std::atomic<int> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-  } shared(n, &work);
-  // One pointer captured: the std::function cv::parallel_for_ takes keeps it without a heap allocation.
-  cv::parallel_for_(
-      cv::Range(0, count),
-      [s = &shared](const cv::Range& range) {
-        for (int k = range.start; k < range.end; ++k) {
-          try {
-            for (int level = s->next++; level < s->n; level = s->next++) {
-              (*s->work)(level);
-            }
-          } catch (...) {
-            std::lock_guard<std::mutex> lock(s->failure_mutex);
-            s->failure = std::current_exception();
-          }
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  parallelFor(count, [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      try {
+        for (int level = next++; level < n; level = next++) {
+          work(level);
         }
-      },
-      count);
-  if (shared.failure) {
-    std::rethrow_exception(shared.failure);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        failure = std::current_exception();
+      }
+    }
+  });
+  if (failure) {
+    std::rethrow_exception(failure);
   }
 }
 
