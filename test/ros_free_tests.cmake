@@ -6,6 +6,7 @@ foreach(unit params enhance noise adaptive_threshold orb_extractor degenerate dr
   target_link_libraries(test_${unit} enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})
   target_compile_definitions(test_${unit} PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}")
 endforeach()
+target_include_directories(test_concurrency PRIVATE ${ENHANCED_ORB_ROOT}/src/core)  # parallel.h
 # The extractor against its reference; it reads the kernels' internal header.
 enhanced_orb_add_gtest(test_identity ${ENHANCED_ORB_ROOT}/test/unit/test_identity.cpp)
 target_link_libraries(test_identity enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})

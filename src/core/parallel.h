@@ -1,5 +1,5 @@
-// The library's parallel loops: cv::parallel_for_ with the body passed as one pointer, and the
-// hand-off between the calling thread and OpenCV's workers made visible to ThreadSanitizer.
+// The library's parallel loops: cv::parallel_for_ with no std::function, and the hand-off between
+// the calling thread and OpenCV's workers made visible to ThreadSanitizer.
 #ifndef ENHANCED_ORB_PARALLEL_H
 #define ENHANCED_ORB_PARALLEL_H
 
@@ -18,13 +18,6 @@
 
 namespace enhanced_orb {
 
-// Runs body(range) over [0, n) in up to n stripes on OpenCV's threads (the caller's among them).
-// The lambda handed to cv::parallel_for_ captures one pointer, so the std::function that takes it
-// makes no heap allocation. OpenCV's pool (TBB in Debian's build) orders a stripe after the call
-// and the call's return after every stripe, but through atomics of its own that ThreadSanitizer
-// does not see; in a build with it, the same order is announced here (release before the stripes
-// start, acquire as each starts; each releases as it ends, the caller acquires on return), so that
-// it checks the bodies themselves.
 namespace detail {
 // ThreadSanitizer's happens-before annotations; nothing in other builds.
 inline void announceRelease(const void* at) {
@@ -43,19 +36,31 @@ inline void announceAcquire(const void* at) {
 }
 }  // namespace detail
 
+// Runs body(range) over [0, n) in up to n stripes on OpenCV's threads (the caller's among them),
+// through cv::parallel_for_'s ParallelLoopBody overload: no std::function, no heap allocation.
+// OpenCV's pool (TBB in Debian's build) orders each stripe after the call, and the call's return
+// after every stripe, through atomics of its own that ThreadSanitizer does not see; in a build with
+// it, these two orders are announced here (on two addresses, so that no stripe is ordered after
+// another), and the sanitizer checks the bodies themselves.
 template <typename Body>
 void parallelFor(int n, const Body& body) {
-  const Body* const call = &body;
-  detail::announceRelease(call);
-  cv::parallel_for_(
-      cv::Range(0, n),
-      [call](const cv::Range& range) {
-        detail::announceAcquire(call);
-        (*call)(range);
-        detail::announceRelease(call);
-      },
-      n);
-  detail::announceAcquire(call);
+  class Stripes : public cv::ParallelLoopBody {
+  public:
+    explicit Stripes(const Body& body) : body_(body) {}
+    void operator()(const cv::Range& range) const override {
+      detail::announceAcquire(&started_);
+      body_(range);
+      detail::announceRelease(&ended_);
+    }
+    const char started_ = 0, ended_ = 0;
+
+  private:
+    const Body& body_;
+  };
+  const Stripes stripes(body);
+  detail::announceRelease(&stripes.started_);
+  cv::parallel_for_(cv::Range(0, n), stripes, n);
+  detail::announceAcquire(&stripes.ended_);
 }
 
 }  // namespace enhanced_orb
