@@ -146,6 +146,28 @@ conditions 5.61 and 5.37 here and 6.41 and 6.54 on `straight_51`, against the wh
 (the default now, `CameraMotion::streamLambda()`): the same four, since this excerpt's λ crosses the
 threshold once (0.29-0.30 for 40 frames, then 0.24-0.26), and flicker, whose bright and dark frames
 had got the curve and not got it in turn, 0.825 to **0.856** (1000) and 0.763 to **0.804** (500).
+Two changes to the moving selection's floor, measured with `enhanced_orb_compare --sequence` on both
+excerpts (default mode alone; unchanged light, and every light where it changed anything): keeping
+only the 1.5 x share strongest of the corners above the floor before spreading (as the still
+selection does) lost everywhere (`turn_51` unchanged 0.834 to 0.770 at 1000, 0.810 to 0.663 at 500;
+dim 0.807 to 0.752); a floor that follows the frame's contrast as well as its noise (the larger of
+8 x the noise and 0.3 x the enhanced frame's standard deviation, so that a clean, contrasty frame
+keeps fewer weak corners) won unchanged light at 500 (`turn_51` 0.810 to 0.841, `straight_51`
+0.797 to 0.845) and at 1000 on `turn_51` (0.834 to 0.849; `straight_51` 0.878 to 0.882), changed
+no dim or dark frame (their contrast is below the noise floor), but lost unchanged light at 2000
+(0.865 to 0.858, 0.890 to 0.880) and, indoors on `MH_01_easy_moving`, unchanged light at 1000
+(0.618 to 0.569, below the original ORB's 0.589) and flicker at 500 (0.602 to 0.570); 0.2 x the
+deviation gained less at 500 (0.838 and 0.827) and lost `straight_51` at 1000 (0.867). Not kept.
+Keeping at most the 8 x share strongest of a level's corners above the floor (so that at a
+small budget a clean frame's weakest corners are left out; unchanged, dim, dark and flicker on both
+excerpts and on `MH_01_easy_moving`): unchanged light at 500 won or came closer (`turn_51` 0.810 to
+0.838, `straight_51` 0.797 to 0.861, `MH_01_easy_moving` 0.529 to 0.564, still below the original
+ORB's 0.593), at 1000 and 2000 it moved both ways (`turn_51` 0.834 to 0.855 and 0.865 to 0.867,
+`straight_51` 0.878 to 0.873 and 0.890 to 0.871, below the paper preset's 0.878, `MH_01_easy_moving`
+0.618 to 0.596 at 1000 and 0.637 to 0.656 at 2000), flicker indoors at 500 lost 0.602 to 0.520, and
+dim and dark hardly changed (few of their corners stand above the floor); 4 x share gave `turn_51`
+0.787 / 0.857 / 0.871 at 500 / 1000 / 2000. Not kept: apart from its losses, its changes are of the
+size another noise draw gives a single AUC.
 What none of these reaches: the original ORB's 0.881 in unchanged light (its fixed FAST 20 on the
 raw frame, whose weakest corners a car's clean, contrasty frame does not need).
 """}
