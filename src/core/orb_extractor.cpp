@@ -85,16 +85,15 @@ void forEachLevel(int n, int threads, Work work) {
   std::atomic<int> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
-  parallelFor(count, [&](const cv::Range& range) {
-    for (int k = range.start; k < range.end; ++k) {
-      try {
-        for (int level = next++; level < n; level = next++) {
-          work(level);
-        }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        failure = std::current_exception();
+  // Each of the `count` stripes takes levels until none is left.
+  parallelFor(count, [&](const cv::Range&) {
+    try {
+      for (int level = next++; level < n; level = next++) {
+        work(level);
       }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failure_mutex);
+      failure = std::current_exception();
     }
   });
   if (failure) {

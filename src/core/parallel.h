@@ -20,20 +20,17 @@ namespace enhanced_orb {
 
 namespace detail {
 // ThreadSanitizer's happens-before annotations; nothing in other builds.
-inline void announceRelease(const void* at) {
 #ifdef ENHANCED_ORB_TSAN
+inline void announceRelease(const void* at) {
   __tsan_release(const_cast<void*>(at));
-#else
-  (void)at;
-#endif
 }
 inline void announceAcquire(const void* at) {
-#ifdef ENHANCED_ORB_TSAN
   __tsan_acquire(const_cast<void*>(at));
-#else
-  (void)at;
-#endif
 }
+#else
+inline void announceRelease(const void*) {}
+inline void announceAcquire(const void*) {}
+#endif
 }  // namespace detail
 
 // Runs body(range) over [0, n) in up to n stripes on OpenCV's threads (the caller's among them),
@@ -44,23 +41,20 @@ inline void announceAcquire(const void* at) {
 // another), and the sanitizer checks the bodies themselves.
 template <typename Body>
 void parallelFor(int n, const Body& body) {
-  class Stripes : public cv::ParallelLoopBody {
-  public:
-    explicit Stripes(const Body& body) : body_(body) {}
+  struct Stripes : cv::ParallelLoopBody {
+    explicit Stripes(const Body& b) : body(b) {}
     void operator()(const cv::Range& range) const override {
-      detail::announceAcquire(&started_);
-      body_(range);
-      detail::announceRelease(&ended_);
+      detail::announceAcquire(&started);
+      body(range);
+      detail::announceRelease(&ended);
     }
-    const char started_ = 0, ended_ = 0;
-
-  private:
-    const Body& body_;
+    const Body& body;
+    const char started = 0, ended = 0;  // the two addresses the order is announced on
   };
   const Stripes stripes(body);
-  detail::announceRelease(&stripes.started_);
+  detail::announceRelease(&stripes.started);
   cv::parallel_for_(cv::Range(0, n), stripes, n);
-  detail::announceAcquire(&stripes.ended_);
+  detail::announceAcquire(&stripes.ended);
 }
 
 }  // namespace enhanced_orb
