@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <mutex>
 #include <stdexcept>
@@ -72,7 +71,7 @@ namespace {
 
 // Runs work(level) for levels (or any tasks) 0..n-1 on up to `threads` threads: each takes the
 // next level not yet taken (the largest first) until none is left, so that no thread waits on
-// another's share. Exceptions are passed on to the caller.
+// another's share. Exceptions reach the caller (parallelFor).
 template <typename Work>
 void forEachLevel(int n, int threads, Work work) {
   const int count = std::min(threads, n);
@@ -83,22 +82,11 @@ void forEachLevel(int n, int threads, Work work) {
     return;
   }
   std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  // Each of the `count` stripes takes levels until none is left.
   parallelFor(count, [&](const cv::Range&) {
-    try {
-      for (int level = next++; level < n; level = next++) {
-        work(level);
-      }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failure_mutex);
-      failure = std::current_exception();
+    for (int level = next++; level < n; level = next++) {
+      work(level);
     }
   });
-  if (failure) {
-    std::rethrow_exception(failure);
-  }
 }
 
 }  // namespace

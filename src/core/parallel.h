@@ -3,6 +3,9 @@
 #ifndef ENHANCED_ORB_PARALLEL_H
 #define ENHANCED_ORB_PARALLEL_H
 
+#include <exception>
+#include <mutex>
+
 #include <opencv2/core/utility.hpp>
 
 #if defined(__SANITIZE_THREAD__)
@@ -38,23 +41,35 @@ inline void announceAcquire(const void*) {}
 // OpenCV's pool (TBB in Debian's build) orders each stripe after the call, and the call's return
 // after every stripe, through atomics of its own that ThreadSanitizer does not see; in a build with
 // it, these two orders are announced here (on two addresses, so that no stripe is ordered after
-// another), and the sanitizer checks the bodies themselves.
+// another), and the sanitizer checks the bodies themselves. An exception a stripe throws reaches
+// the caller as it was thrown, after every stripe has ended (of several, one), whatever OpenCV's
+// threading backend would do with it.
 template <typename Body>
 void parallelFor(int n, const Body& body) {
   struct Stripes : cv::ParallelLoopBody {
     explicit Stripes(const Body& b) : body(b) {}
     void operator()(const cv::Range& range) const override {
       detail::announceAcquire(&started);
-      body(range);
+      try {
+        body(range);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        failure = std::current_exception();
+      }
       detail::announceRelease(&ended);
     }
     const Body& body;
+    mutable std::mutex failure_mutex;
+    mutable std::exception_ptr failure;
     const char started = 0, ended = 0;  // the two addresses the order is announced on
   };
   const Stripes stripes(body);
   detail::announceRelease(&stripes.started);
   cv::parallel_for_(cv::Range(0, n), stripes, n);
   detail::announceAcquire(&stripes.ended);
+  if (stripes.failure) {
+    std::rethrow_exception(stripes.failure);
+  }
 }
 
 }  // namespace enhanced_orb

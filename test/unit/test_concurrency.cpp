@@ -3,6 +3,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -37,6 +38,27 @@ TEST(Concurrency, ParallelLoopHandsOverTheCallersDataAndBack) {
       ASSERT_EQ(runs[k], 1) << "index " << k << ", round " << round;
       ASSERT_EQ(values[k], round * 100 + static_cast<int>(k) + 1) << "index " << k << ", round " << round;
     }
+  }
+  cv::setNumThreads(previous);
+}
+
+// A stripe's exception reaches the caller as thrown, and only after every stripe has run.
+TEST(Concurrency, ParallelLoopPassesAStripesExceptionOnAsThrown) {
+  const int previous = cv::getNumThreads();
+  cv::setNumThreads(4);
+  std::vector<int> runs(16, 0);
+  EXPECT_THROW(parallelFor(static_cast<int>(runs.size()),
+                           [&](const cv::Range& range) {
+                             for (int k = range.start; k < range.end; ++k) {
+                               runs[k] += 1;
+                               if (k == 5) {
+                                 throw std::invalid_argument("stripe 5");
+                               }
+                             }
+                           }),
+               std::invalid_argument);
+  for (size_t k = 0; k < runs.size(); ++k) {
+    EXPECT_EQ(runs[k], 1) << "index " << k;
   }
   cv::setNumThreads(previous);
 }
