@@ -148,6 +148,45 @@ def run_result(run_dir, gt_stamps, gt_positions, n_frames, with_scale):
     return result
 
 
+def start_table(starts, builds):
+    """The monocular start (orbslam3_eval.sh, START_EVERY): per condition and build, over the starts,
+    the frames in the trajectory (a map started from frames k and k + 1 holds every frame from k + 1
+    on), the starts whose first pair started the map, and those with no map by their last frame."""
+    if not starts.is_dir():
+        return []
+    found = {p.name for b in builds for p in (starts / b).glob("*") if p.is_dir()}
+    conditions = [c for c in CONDITIONS if c in found] + sorted(found - set(CONDITIONS))
+    rows, given, firsts = [], set(), set()
+    for condition in conditions:
+        for b in builds:
+            runs = sorted((starts / b / condition).glob("*/times.txt"))
+            if not runs:
+                continue
+            tracked, first_pair, none = [], 0, 0
+            for times in runs:
+                n = len(times.read_text().split())
+                given.add(n)
+                firsts.add(int(times.parent.name))
+                trajectory = times.parent / "f_run.txt"
+                stamps = {line.split()[0] for line in trajectory.read_text().splitlines()
+                          if len(line.split()) >= 8} if trajectory.exists() else set()
+                tracked.append(len(stamps))
+                first_pair += len(stamps) == n - 1
+                none += not stamps
+            rows.append(f"| {condition} | {run_name(b)} | {statistics.mean(tracked):.2f} | "
+                        f"{first_pair} of {len(runs)} | {none} of {len(runs)} |")
+    if not rows:
+        return []
+    n = "/".join(str(v) for v in sorted(given))
+    firsts = sorted(firsts)
+    every = f", every {firsts[1] - firsts[0]}th frame" if len(firsts) > 1 else ""
+    return [f"**Monocular start** (`mono_euroc` given {n} frames from each of {len(firsts)} starts{every}: "
+            "how soon its map starts; a map started from the first pair holds every frame but the "
+            f"first, {max(given) - 1})\n",
+            "| light | extractor | frames tracked (mean) | map from the first pair | no map |",
+            "| --- | --- | ---: | ---: | ---: |"] + rows + [""]
+
+
 def fmt_ate(values):
     values = [v for v in values if v is not None]
     if not values:
@@ -164,7 +203,9 @@ def main(args):
     runs, data, doc = (list(args) + [None])[:3]
     runs = pathlib.Path(runs)
     gt_stamps, gt_positions = ground_truth(data)
-    builds = sorted((p.name for p in runs.iterdir() if p.is_dir()), key=lambda b: (b != "stock", b != "enhanced_orb-default", b))
+    # the builds that ran: full runs, monocular starts (orbslam3_eval.sh with REPEATS=0 runs only these)
+    builds = sorted({p.name for d in (runs, runs.parent / "starts") if d.is_dir() for p in d.iterdir() if p.is_dir()},
+                    key=lambda b: (b != "stock", b != "enhanced_orb-default", b))
     lines = [INTRO]
     summary = {}  # (sensor, condition, build) -> (mean frames tracked, median ATE in mm or None)
     for sensor in ("stereo", "mono"):
@@ -199,6 +240,7 @@ def main(args):
                 summary[(sensor, condition, b)] = (tracked, statistics.median(ates) if ates else None)
         repeats = max(len(list((runs / b / sensor / c).glob("*"))) for b in builds for c in conditions)
         lines.append(f"\n{repeats} run(s) per cell; tracked, local map lost and maps are means over them.\n")
+    lines += start_table(runs.parent / "starts", builds)
     if doc:
         plot(summary, builds, pathlib.Path(doc).resolve().parent / "results" / "orbslam3.png")
         lines.append("![ORB-SLAM3 with its own extractor and with enhanced_orb's: frames tracked and ATE per "
