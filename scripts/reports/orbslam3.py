@@ -51,7 +51,7 @@ calls the stream's last 5 frames poor; run as `PRESETS=auto` with `config/auto.y
 selection without the judgment; the curve on every frame as in the default).
 
 ```bash
-bash scripts/orbslam3_eval.sh ~/ORB_SLAM3 ~/ORB_SLAM3/Vocabulary/ORBvoc.txt \
+bash scripts/orbslam3_eval.sh ~/ORB_SLAM3 ~/ORB_SLAM3/Vocabulary/ORBvoc.txt \\
   ../shared/data/euroc/MH_01_easy_moving /tmp/eo_orbslam3
 python3 scripts/report.py orbslam3 /tmp/eo_orbslam3/runs ../shared/data/euroc/MH_01_easy_moving docs/RESULTS.md
 ```
