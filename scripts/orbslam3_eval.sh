@@ -184,21 +184,27 @@ fi
 CONDITIONS=${CONDITIONS:-$(cd "$WORK/frames" && ls -d */ | tr -d / | tr '\n' ' ')}
 
 # --- the runs -------------------------------------------------------------------------------------
-# RUN is "stock" or "enhanced_orb-<preset>".
-run_one() {  # RUN SENSOR CONDITION REPEAT
-  local dir=$WORK/runs/$1/$2/$3/$4 build=${1%%-*} exe settings config=
+# One run of ORB-SLAM3's EuRoC example in DIR, unless done there: the condition's frames, or COUNT of
+# them from FIRST. ORB-SLAM3's examples crash when saving the trajectory of a map that never started:
+# no trajectory file, the exit status in the log, the shell's report of the crash not printed.
+run_in() {  # DIR RUN SENSOR CONDITION [FIRST COUNT]; RUN is "stock" or "enhanced_orb-<preset>"
+  local dir=$1 build=${2%%-*} times=$WORK/frames/$4/times.txt sensor=Monocular exe=mono_euroc config=
   [ -f "$dir/done" ] && return 0
   rm -rf "$dir" && mkdir -p "$dir"
-  if [ "$2" = stereo ]; then
-    exe=$WORK/$build/Examples/Stereo/stereo_euroc settings=$WORK/$build/Examples/Stereo/EuRoC.yaml
-  else
-    exe=$WORK/$build/Examples/Monocular/mono_euroc settings=$WORK/$build/Examples/Monocular/EuRoC.yaml
+  if (($# > 4)); then
+    sed -n "$(($5 + 1)),$(($5 + $6))p" "$times" >"$dir/times.txt"
+    times=$dir/times.txt
   fi
-  [ "$build" = stock ] || config=$ROOT/config/${1#*-}.yaml
-  (cd "$dir" && ENHANCED_ORB_CONFIG=$config timeout 900 "$exe" "$VOCABULARY" "$settings" "$WORK/frames/$3" \
-    "$WORK/frames/$3/times.txt" run >log.txt 2>&1) || echo "exit $?" >>"$dir/log.txt"
+  if [ "$3" = stereo ]; then
+    sensor=Stereo exe=stereo_euroc
+  fi
+  [ "$build" = stock ] || config=$ROOT/config/${2#*-}.yaml
+  (cd "$dir" && { ENHANCED_ORB_CONFIG=$config timeout 900 "$WORK/$build/Examples/$sensor/$exe" "$VOCABULARY" \
+    "$WORK/$build/Examples/$sensor/EuRoC.yaml" "$WORK/frames/$4" "$times" run >log.txt 2>&1 \
+    || echo "exit $?" >>log.txt; }) 2>/dev/null
   touch "$dir/done"
 }
+run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3"; }  # RUN SENSOR CONDITION REPEAT
 RUNS="stock"
 for p in $PRESETS; do RUNS="$RUNS enhanced_orb-$p"; done
 total=0
@@ -222,25 +228,12 @@ done; done; done; done
 # seeds its two-view RANSAC with 0).
 START_EVERY=${START_EVERY:-10}
 START_FRAMES=${START_FRAMES:-10}
-run_start() {  # RUN CONDITION FIRST
-  local dir=$WORK/starts/$1/$2/$3 build=${1%%-*} config=
-  [ -f "$dir/done" ] && return 0
-  rm -rf "$dir" && mkdir -p "$dir"
-  sed -n "$(($3 + 1)),$(($3 + START_FRAMES))p" "$WORK/frames/$2/times.txt" >"$dir/times.txt"
-  [ "$build" = stock ] || config=$ROOT/config/${1#*-}.yaml
-  # ORB-SLAM3's example crashes when saving the trajectory of a map that never started: no file,
-  # the exit status in the log, the shell's report of the crash not printed.
-  (cd "$dir" && { ENHANCED_ORB_CONFIG=$config timeout 300 "$WORK/$build/Examples/Monocular/mono_euroc" "$VOCABULARY" \
-    "$WORK/$build/Examples/Monocular/EuRoC.yaml" "$WORK/frames/$2" "$dir/times.txt" run >log.txt 2>&1 \
-    || echo "exit $?" >>log.txt; }) 2>/dev/null
-  touch "$dir/done"
-}
 if [[ " $SENSORS " == *" mono "* ]] && ((START_EVERY > 0)); then
   n_frames=$(wc -l <"$WORK/frames/$(set -- $CONDITIONS; echo "$1")/times.txt")
   starts=$(seq 0 "$START_EVERY" $((n_frames - START_FRAMES)))
   log "monocular start: $(echo $starts | wc -w) starts of $START_FRAMES frames per build and condition"
   for b in $RUNS; do for c in $CONDITIONS; do for f in $starts; do
-    run_start "$b" "$c" "$f"
+    run_in "$WORK/starts/$b/$c/$f" "$b" mono "$c" "$f" "$START_FRAMES"
   done; done; done
 fi
 
