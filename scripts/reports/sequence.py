@@ -15,7 +15,7 @@ import os
 import statistics
 import sys
 
-from reports.common import auc, table, write_section
+from reports.common import auc, auc_difference_interval, table, write_section
 
 ORDER = ["default", "motion", "stretch", "paper", "baseline", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]
 TESTED = ["default", "motion"]  # this package's modes, each against the best rival
@@ -65,6 +65,7 @@ every sixth at 500 and 2000 (`--sequence-every 6`, to keep the run short; each t
 gives its pairs per method and condition), tracking at every frame; each number is one run of one noise draw per frame, and
 another draw moved a single AUC by up to about 0.04 (every method sees the same draw, so the
 ratios move less).
+{losses}
 
 Reproduce (about 30 minutes here at one budget):
 
@@ -103,12 +104,27 @@ noise added to the pool, in cells 0.7 x as wide, 0.613 / 0.401 and 0.49-1.03x (`
 the pool spread over finer cells 0.531-0.552 and 0.98-1.03x; corners within 3 px of a stronger one
 dropped 0.577, corners refined by `cv::cornerSubPix` 0.566-0.571, the tone curve off
 (`gamma_mode: never`) 0.547. Hence the judgment. What it does not know: relocalisation while moving
-gets the moving selection, with its fewer correct matches against a darkened or noisy view; images
-that are not one camera's frames in order need `camera_motion: still`. Where it still loses, the
+gets the moving selection, with its fewer correct matches against a darkened or noisy view (an image
+unrelated to the one before it is a new scene and judged still). Where it still loses, the
 tables say "loses": at 500 features in unchanged light the original ORB's pose is ahead; with so
 small a budget the moving selection puts weak corners (above the noise, below the baseline's fixed
 FAST 20) into cells the baseline leaves empty, and the still selection, which does not, loses there
 too (0.554 against 0.593).
+What was tried against that loss, each one setting of the default mode changed (`--set`), pose
+AUC@10 at 500 features in unchanged light on this sequence (pairs from every sixth frame) /
+`turn_51` / `straight_51`, against the default's 0.529 / 0.810 / 0.797 and the best rival's 0.593
+(the original ORB) / 0.825 (ORB-SLAM's) / 0.845 (the paper preset): `moving_noise_floor` 12 0.586 /
+0.838 / 0.814, 16 0.543 / 0.806 / 0.845; `c_min` 12 0.566 / 0.849 / 0.805, 16 0.552 / 0.824 / 0.815,
+20 (on the enhanced frame, the original ORB's FAST 20) 0.560 / 0.814 / 0.853; no enhancement (the
+moving selection on the raw frame) 0.545 / 0.837 / 0.829, and there every corner at `c_min` 7 instead
+of the noise floor 0.510 here; `moving_gamma_mode: never` 0.542 / 0.844 / 0.797; no 3 x 3 filter
+(`blur_ksize: 1`) 0.579 / 0.820 / 0.845, but at 1000 0.587 / 0.830 / 0.873 against the default's
+0.635 / 0.834 / 0.878 (here from every sixth frame) and in noisy light far below (dim at 1000 0.517 /
+0.595 / 0.766 against 0.594 / 0.807 / 0.863); the paper's adaptive threshold for a moving camera too
+(`moving_threshold_scale` 0.3, the still camera's) 0.550 / 0.830 / 0.822, but unchanged light here at
+1000 / 2000 0.587 / 0.604 against 0.635 / 0.637 and flicker at 2000 0.535 against 0.625 (0.15: 0.556 /
+0.806 / 0.806, here at 1000 / 2000 0.594 / 0.610). None is kept: each either loses elsewhere or moves
+the three by about as much as the brackets below say another choice of frames does.
 """
 
 
@@ -123,6 +139,16 @@ frames are one stream, judged in order (a car driving is judged moving within it
 `test_camera_motion`).
 
 Light conditions: {conditions}.
+{losses}
+"""
+
+
+LOSSES = """
+Where the default mode loses, the bracket after "loses" says how sure that is: the 95 % interval of
+its AUC@10 minus the best rival's when the pairs are drawn again (their start frames drawn with
+replacement in blocks that span the largest gap, 1000 draws; `auc_difference_interval` in
+`scripts/reports/common.py`). A loss whose interval holds 0 is of the size another choice of frames
+gives; one whose interval lies below 0 is a loss these frames show beyond that.
 """
 
 
@@ -223,11 +249,13 @@ def main(args):
         sys.exit("report sequence: no rows in " + " ".join(args))
 
     errors = collections.defaultdict(list)  # (condition, method, budget[, gap]) -> errors
+    pair_errors = collections.defaultdict(dict)  # (condition, method, budget) -> {(frame, gap): error}
     for r in pose_rows:
         e = max(float(r["rotation_deg"]), float(r["translation_deg"]))
         key = (r["condition"], r["method"], int(r["budget"]))
         errors[key].append(e)
         errors[key + (int(r["gap"]),)].append(e)
+        pair_errors[key][(int(r["frame"]), int(r["gap"]))] = e
     tracked = collections.defaultdict(list)
     t_err = collections.defaultdict(list)
     r_err = collections.defaultdict(list)
@@ -262,8 +290,25 @@ def main(args):
         return len([r for r in pose_rows if r["method"] == "default" and r["condition"] == pose_rows[0]["condition"]
                     and int(r["budget"]) == b])
 
+    # Pairs that share a frame are not independent: the interval redraws start frames in blocks
+    # that span the largest gap.
+    starts = sorted({int(r["frame"]) for r in pose_rows})
+    step = min((b - a for a, b in zip(starts, starts[1:])), default=1)
+    block = max(1, math.ceil(max(gaps) / step))
+
+    def pose_verdict(cond, t, b):
+        best = max(rivals, key=lambda m: a(cond, m, b))
+        value, best_value = a(cond, t, b), a(cond, best, b)
+        if best_value <= 0 or value >= best_value:
+            return fmt_ratio(value, best_value)
+        key_t, key_best = (cond, t, b), (cond, best, b)
+        shared = pair_errors[key_t].keys() & pair_errors[key_best].keys()
+        low, high = auc_difference_interval({k: pair_errors[key_t][k] for k in shared},
+                                            {k: pair_errors[key_best][k] for k in shared}, 10.0, block)
+        return "%.2fx (loses; %+.3f to %+.3f)" % (value / best_value, low, high)
+
     intro = INTRO if section == "sequence" else DRIVING_INTRO + TRIED.get(sequence, "")
-    out = [intro.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)),
+    out = [intro.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)), losses=LOSSES,
                         conditions="; ".join("`%s` %s" % (c, LIGHT.get(c, "")) for c in conditions))]
 
     # The verdict at every budget: the default mode against the best rival, both measures.
@@ -274,7 +319,7 @@ def main(args):
         rows = []
         for c in conditions:
             rows.append(["%s AUC@10" % c] + ["%.3f" % a(c, m, b) for m in methods] +
-                        [fmt_ratio(a(c, t, b), max(a(c, m, b) for m in rivals)) for t in tested])
+                        [pose_verdict(c, t, b) for t in tested])
             if track_rows:
                 rows.append(["%s tracked" % c] + ["%.3f" % trk(c, m, b) for m in methods] +
                             [fmt_ratio(trk(c, t, b), max(trk(c, m, b) for m in rivals)) for t in tested])
