@@ -148,8 +148,7 @@ Where the default mode loses, the bracket after "loses" says how sure that is: t
 its AUC@10 minus the best rival's when the pairs are drawn again (their start frames drawn with
 replacement in blocks that span the largest gap, 1000 draws; `auc_difference_interval` in
 `scripts/reports/common.py`). A loss whose interval holds 0 is of the size another choice of frames
-gives; one whose interval lies below 0 is a loss these frames show beyond that.
-"""
+gives; one whose interval lies below 0 is a loss these frames show beyond that."""
 
 
 # What was tried where the default mode loses on a car, measured on this excerpt.
