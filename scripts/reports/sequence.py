@@ -214,11 +214,14 @@ raw frame, whose weakest corners a car's clean, contrasty frame does not need).
 """}
 
 
-def fmt_ratio(value, best):
+def fmt_ratio(value, best, interval=None):
+    """value / best in bold, or marked "loses" when below 1, with the loss's interval where given."""
     if best <= 0:
         return "-"
     r = value / best
-    return ("**%.2fx**" if r >= 1.0 else "%.2fx (loses)") % r
+    if r >= 1.0:
+        return "**%.2fx**" % r
+    return "%.2fx (loses%s)" % (r, "; %+.3f to %+.3f" % interval if interval else "")
 
 
 def median_error(values):
@@ -302,9 +305,9 @@ def main(args):
             return fmt_ratio(value, best_value)
         key_t, key_best = (cond, t, b), (cond, best, b)
         shared = pair_errors[key_t].keys() & pair_errors[key_best].keys()
-        low, high = auc_difference_interval({k: pair_errors[key_t][k] for k in shared},
-                                            {k: pair_errors[key_best][k] for k in shared}, 10.0, block)
-        return "%.2fx (loses; %+.3f to %+.3f)" % (value / best_value, low, high)
+        interval = auc_difference_interval({k: pair_errors[key_t][k] for k in shared},
+                                           {k: pair_errors[key_best][k] for k in shared}, 10.0, block)
+        return fmt_ratio(value, best_value, interval)
 
     intro = INTRO if section == "sequence" else DRIVING_INTRO + TRIED.get(sequence, "")
     out = [intro.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)), losses=LOSSES,
