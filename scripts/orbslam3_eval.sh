@@ -24,7 +24,14 @@
 # source tree to build into WORK when Pangolin is not installed; the viewer stays off),
 # START_EVERY and START_FRAMES (default 10 and 10: with "mono" in SENSORS, each build also starts
 # from every START_EVERY-th frame of each condition for START_FRAMES frames, to show how soon its
-# monocular map starts; START_EVERY=0 skips this).
+# monocular map starts; START_EVERY=0 skips this), START_SEEDS (default "0": the seeds of the
+# two-view RANSAC each start is run with, below).
+#
+# A monocular map starts from the first pair of frames whose two-view reconstruction passes
+# ORB-SLAM3's checks, and that reconstruction is a RANSAC whose seed ORB-SLAM3 fixes at 0: one run's
+# start is one draw, the same in every repeat. Both copies read that seed from ORBSLAM3_EVAL_SEED
+# instead (0 when unset, as shipped; nothing else changes), and repeat r of a run draws seed r - 1,
+# so that the repeats of a monocular run are three draws of its start, for both builds alike.
 #
 # ORB-SLAM3 is GPL-3: it is built and run here for evaluation only, in WORK; nothing of it enters
 # this repository. Time here (2 cores): about 70 minutes to build both copies, about 15 s per run
@@ -92,6 +99,16 @@ fi
 # library's), only the two EuRoC examples, the viewer off. The adapted copy also: ORBextractor.h
 # replaced by a class deriving from enhanced_orb::OrbSlamExtractor, ORBextractor.cc left out,
 # enhanced_orb_core linked. Thirdparty (DBoW2, g2o) is built once and shared.
+# The two-view RANSAC's seed from ORBSLAM3_EVAL_SEED (0 when unset). Returns 1 when the copy was
+# already so.
+seed_from_environment() {  # DIR
+  local file=$1/src/TwoViewReconstruction.cc
+  grep -q ORBSLAM3_EVAL_SEED "$file" && return 1
+  grep -q 'DUtils::Random::SeedRandOnce(0);' "$file" \
+    || { echo "orbslam3_eval: $file does not seed its RANSAC with 0: not ORB-SLAM3 v1.0" >&2; exit 2; }
+  sed -i -e '1i #include <cstdlib>' -e 's/DUtils::Random::SeedRandOnce(0);/DUtils::Random::SeedRandOnce(std::getenv("ORBSLAM3_EVAL_SEED") ? std::atoi(std::getenv("ORBSLAM3_EVAL_SEED")) : 0);/' "$file"
+}
+
 prepare_copy() {  # NAME
   local dst=$WORK/$1
   rm -rf "$dst" && mkdir -p "$dst/Examples/Stereo" "$dst/Examples/Monocular"
@@ -104,6 +121,7 @@ prepare_copy() {  # NAME
   else
     ln -s ../stock/Thirdparty "$dst/Thirdparty"
   fi
+  seed_from_environment "$dst" || true
   sed -i 's/ORB_SLAM3::System::STEREO, *true)/ORB_SLAM3::System::STEREO, false)/' "$dst/Examples/Stereo/stereo_euroc.cc"
   sed -i 's/ORB_SLAM3::System::MONOCULAR, *true)/ORB_SLAM3::System::MONOCULAR, false)/' \
     "$dst/Examples/Monocular/mono_euroc.cc"
@@ -169,6 +187,10 @@ build_copy() {  # NAME
 
 for b in stock enhanced_orb; do
   [ -f "$WORK/$b/CMakeLists.txt" ] || prepare_copy "$b"
+  # a copy prepared before the seed was read: read it now and build again (make rebuilds one file)
+  if seed_from_environment "$WORK/$b"; then
+    rm -f "$WORK/$b/Examples/Stereo/stereo_euroc" "$WORK/$b/Examples/Monocular/mono_euroc"
+  fi
   [ "$b" = stock ] && build_thirdparty
   build_copy "$b"
 done
@@ -187,24 +209,26 @@ CONDITIONS=${CONDITIONS:-$(cd "$WORK/frames" && ls -d */ | tr -d / | tr '\n' ' '
 # One run of ORB-SLAM3's EuRoC example in DIR, unless done there: the condition's frames, or COUNT of
 # them from FIRST. ORB-SLAM3's examples crash when saving the trajectory of a map that never started:
 # no trajectory file, the exit status in the log, the shell's report of the crash not printed.
-run_in() {  # DIR RUN SENSOR CONDITION [FIRST COUNT]; RUN is "stock" or "enhanced_orb-<preset>"
+run_in() {  # DIR RUN SENSOR CONDITION SEED [FIRST COUNT]; RUN is "stock" or "enhanced_orb-<preset>"
   local dir=$1 build=${2%%-*} times=$WORK/frames/$4/times.txt sensor=Monocular exe=mono_euroc config=
-  [ -f "$dir/done" ] && return 0
+  # done before, with this seed (a run from before the seed was recorded runs again)
+  [ -f "$dir/done" ] && [ "$(cat "$dir/seed" 2>/dev/null)" = "$5" ] && return 0
   rm -rf "$dir" && mkdir -p "$dir"
-  if (($# > 4)); then
-    sed -n "$(($5 + 1)),$(($5 + $6))p" "$times" >"$dir/times.txt"
+  if (($# > 5)); then
+    sed -n "$(($6 + 1)),$(($6 + $7))p" "$times" >"$dir/times.txt"
     times=$dir/times.txt
   fi
   if [ "$3" = stereo ]; then
     sensor=Stereo exe=stereo_euroc
   fi
   [ "$build" = stock ] || config=$ROOT/config/${2#*-}.yaml
-  (cd "$dir" && { ENHANCED_ORB_CONFIG=$config timeout 900 "$WORK/$build/Examples/$sensor/$exe" "$VOCABULARY" \
+  echo "$5" >"$dir/seed"
+  (cd "$dir" && { ORBSLAM3_EVAL_SEED=$5 ENHANCED_ORB_CONFIG=$config timeout 900 "$WORK/$build/Examples/$sensor/$exe" "$VOCABULARY" \
     "$WORK/$build/Examples/$sensor/EuRoC.yaml" "$WORK/frames/$4" "$times" run >log.txt 2>&1 \
     || echo "exit $?" >>log.txt; }) 2>/dev/null
   touch "$dir/done"
 }
-run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3"; }  # RUN SENSOR CONDITION REPEAT
+run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3" $(($4 - 1)); }  # RUN SENSOR CONDITION REPEAT
 RUNS="stock"
 for p in $PRESETS; do RUNS="$RUNS enhanced_orb-$p"; done
 total=0
@@ -223,18 +247,22 @@ done; done; done; done
 # trusts (enough matches of level-0 keypoints, one clear solution, enough parallax); on a single
 # run that is one draw. Here each build also starts from every START_EVERY-th frame of each
 # condition and is given START_FRAMES frames from there: the frames in its trajectory (from the
-# pair that started the map on) show how soon the map starts, over many starts. One run per start:
-# the start is decided by the tracking thread alone, the same way on the same frames (ORB-SLAM3
-# seeds its two-view RANSAC with 0).
+# pair that started the map on) show how soon the map starts, over many starts. One run per start
+# and seed of START_SEEDS: the start is decided by the tracking thread alone, the same way on the
+# same frames with the same seed. The runs of seed 0 are in starts/RUN/CONDITION/FIRST, of seed s
+# in FIRST.s.
 START_EVERY=${START_EVERY:-10}
 START_FRAMES=${START_FRAMES:-10}
+START_SEEDS=${START_SEEDS:-0}
 if [[ " $SENSORS " == *" mono "* ]] && ((START_EVERY > 0)); then
   n_frames=$(wc -l <"$WORK/frames/$(set -- $CONDITIONS; echo "$1")/times.txt")
   starts=$(seq 0 "$START_EVERY" $((n_frames - START_FRAMES)))
-  log "monocular start: $(echo $starts | wc -w) starts of $START_FRAMES frames per build and condition"
-  for b in $RUNS; do for c in $CONDITIONS; do for f in $starts; do
-    run_in "$WORK/starts/$b/$c/$f" "$b" mono "$c" "$f" "$START_FRAMES"
-  done; done; done
+  log "monocular start: $(echo $starts | wc -w) starts of $START_FRAMES frames per build, condition and seed ($START_SEEDS)"
+  for b in $RUNS; do for c in $CONDITIONS; do for f in $starts; do for seed in $START_SEEDS; do
+    name=$f
+    [ "$seed" = 0 ] || name=$f.$seed
+    run_in "$WORK/starts/$b/$c/$name" "$b" mono "$c" "$seed" "$f" "$START_FRAMES"
+  done; done; done; done
 fi
 
 python3 "$ROOT/scripts/report.py" orbslam3 "$WORK/runs" "$DATA" | tee "$WORK/results.md"
