@@ -94,13 +94,8 @@ if [ -n "${PANGOLIN_SRC:-}" ]; then
   export LD_LIBRARY_PATH="$WORK/pangolin/install/lib:${LD_LIBRARY_PATH:-}"
 fi
 
-# --- the two copies ---------------------------------------------------------------------------------
-# Both: C++14 (gcc 12 defaults to C++17, where Eigen's aligned allocation differs from the C++14
-# library's), only the two EuRoC examples, the viewer off. The adapted copy also: ORBextractor.h
-# replaced by a class deriving from enhanced_orb::OrbSlamExtractor, ORBextractor.cc left out,
-# enhanced_orb_core linked. Thirdparty (DBoW2, g2o) is built once and shared.
-# The two-view RANSAC's seed from ORBSLAM3_EVAL_SEED (0 when unset). Returns 1 when the copy was
-# already so.
+# The two-view RANSAC's seed read from ORBSLAM3_EVAL_SEED (0 when unset) in the copy in DIR; returns
+# 1 when the copy reads it already.
 seed_from_environment() {  # DIR
   local file=$1/src/TwoViewReconstruction.cc
   grep -q ORBSLAM3_EVAL_SEED "$file" && return 1
@@ -109,6 +104,11 @@ seed_from_environment() {  # DIR
   sed -i -e '1i #include <cstdlib>' -e 's/DUtils::Random::SeedRandOnce(0);/DUtils::Random::SeedRandOnce(std::getenv("ORBSLAM3_EVAL_SEED") ? std::atoi(std::getenv("ORBSLAM3_EVAL_SEED")) : 0);/' "$file"
 }
 
+# --- the two copies ---------------------------------------------------------------------------------
+# Both: C++14 (gcc 12 defaults to C++17, where Eigen's aligned allocation differs from the C++14
+# library's), only the two EuRoC examples, the viewer off. The adapted copy also: ORBextractor.h
+# replaced by a class deriving from enhanced_orb::OrbSlamExtractor, ORBextractor.cc left out,
+# enhanced_orb_core linked. Thirdparty (DBoW2, g2o) is built once and shared.
 prepare_copy() {  # NAME
   local dst=$WORK/$1
   rm -rf "$dst" && mkdir -p "$dst/Examples/Stereo" "$dst/Examples/Monocular"
@@ -121,7 +121,6 @@ prepare_copy() {  # NAME
   else
     ln -s ../stock/Thirdparty "$dst/Thirdparty"
   fi
-  seed_from_environment "$dst" || true
   sed -i 's/ORB_SLAM3::System::STEREO, *true)/ORB_SLAM3::System::STEREO, false)/' "$dst/Examples/Stereo/stereo_euroc.cc"
   sed -i 's/ORB_SLAM3::System::MONOCULAR, *true)/ORB_SLAM3::System::MONOCULAR, false)/' \
     "$dst/Examples/Monocular/mono_euroc.cc"
@@ -187,7 +186,8 @@ build_copy() {  # NAME
 
 for b in stock enhanced_orb; do
   [ -f "$WORK/$b/CMakeLists.txt" ] || prepare_copy "$b"
-  # a copy prepared before the seed was read: read it now and build again (make rebuilds one file)
+  # a new copy, or one prepared before the seed was read: read it, and build again (make rebuilds
+  # one file)
   if seed_from_environment "$WORK/$b"; then
     rm -f "$WORK/$b/Examples/Stereo/stereo_euroc" "$WORK/$b/Examples/Monocular/mono_euroc"
   fi

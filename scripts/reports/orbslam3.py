@@ -36,12 +36,12 @@ use the official ORBvoc.txt). Data: `MH_01_easy_moving` (300 stereo frames at 20
 light condition of the sequence evaluation above, written as EuRoC folders by
 `enhanced_orb_compare --write-sequence` (the same frames). Every run at real time, as the examples
 pace themselves. A monocular map starts from the first pair of frames whose two-view reconstruction
-passes ORB-SLAM3's checks (one clear solution, enough parallax), a RANSAC that ORB-SLAM3 seeds with 0,
-so that every repeat of a run starts the same way: both copies here read that seed from
+passes ORB-SLAM3's checks (one clear solution, enough parallax), a RANSAC that ORB-SLAM3 seeds with
+0, so that every repeat of a run starts the same way: both copies here read that seed from
 `ORBSLAM3_EVAL_SEED` instead, and the three runs of a cell are seeds 0 (as shipped), 1 and 2, the
-same for every extractor (stereo does not use it). **frames tracked**: frames in ORB-SLAM3's trajectory file, i.e. in its largest
-map and not lost, over the 300 given; **local map lost**: its "Fail to track local map!" events;
-**maps**: maps started (each after the first is a reset or a new map after tracking was lost);
+same for every extractor (stereo does not use it). **frames tracked**: frames in ORB-SLAM3's
+trajectory file, i.e. in its largest map and not lost, over the 300 given; **local map lost**: its
+"Fail to track local map!" events; **maps**: maps started (each after the first is a reset or a new map after tracking was lost);
 **ATE**: RMSE of the camera positions after alignment to the ground truth (T_WB T_BS of cam0).
 **enhanced_orb default** is the adapter as a user gets it (no `ENHANCED_ORB_CONFIG`, or
 `config/default.yaml`): the default mode, which judges from the frames ORB-SLAM gives each extractor
