@@ -97,11 +97,18 @@ struct OrbParams {
   double candidate_ratio = 1.5;
   // > 0: at a budget, a level's spread selection draws from its corners whose FAST score is at
   // least noise_floor x the frame's noise (estimateNoise() of the image the corners are found on),
-  // and at least from its budget's strongest; candidate_ratio is then not used. 0: off. [0, 50]
+  // and at least from its budget's strongest (at most floor_candidate_ratio x budget of them);
+  // candidate_ratio is then not used. 0: off. [0, 50]
   double noise_floor = 0.0;
   // noise_floor while the camera moves: the budget spread over every corner that stands out of the
   // noise, for relative pose and tracking (docs/RESULTS.md, "Real camera motion"). [0, 50]
   double moving_noise_floor = 8.0;
+  // > 0: of a level's corners above the noise floor in use (noise_floor, or moving_noise_floor while
+  // the camera moves), the spread draws from at most its floor_candidate_ratio x budget strongest,
+  // so that at a small budget in good light the weakest corners above the noise are left out
+  // (docs/RESULTS.md, "Real camera motion": 8 at 500 features). 0: from every corner above the
+  // floor. [0, 100]
+  double floor_candidate_ratio = 0.0;
   // Which of the two selections a frame gets; auto judges from a stream's frames whether its
   // camera moves (CameraMotion, ExtractOptions::camera_moving).
   MotionMode camera_motion = MotionMode::kAuto;

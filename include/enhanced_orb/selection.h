@@ -36,7 +36,8 @@ struct SelectionWorkspace {
 // Cuts the corners of each level (levels[l] for the n_levels first) to the budget
 // orb.max_features (> 0): each level gets its levelBudgets() share plus what the levels before it
 // could not use; its candidates are its corners scoring at least orb.noise_floor x `noise` (and at
-// least its share's strongest) when noise_floor > 0, else its candidate_ratio x share strongest
+// least its share's strongest; at most its orb.floor_candidate_ratio x share strongest where that is
+// > 0) when noise_floor > 0, else its candidate_ratio x share strongest
 // (every corner when candidate_ratio is 0); the share is spread over them as selectSpread() does.
 // `complete`, where given, is for levels whose corners were found at the noise floor only (every
 // corner scoring at least noise_floor x `noise`): called with a level that has fewer of them than

@@ -225,6 +225,17 @@ const char* candidateRatioUnused(const Params& p) {
   return still || moving ? nullptr : "not used when the noise floor in use is > 0";
 }
 
+const char* floorCandidateRatioUnused(const Params& p) {
+  const char* why = budgetOnly(p);
+  if (why) {
+    return why;
+  }
+  // Used by each selection in use whose noise floor is above 0.
+  const bool still = p.orb.camera_motion != MotionMode::kMoving && p.orb.noise_floor > 0.0;
+  const bool moving = p.orb.camera_motion != MotionMode::kStill && p.orb.moving_noise_floor > 0.0;
+  return still || moving ? nullptr : "only used with a noise floor above 0 (noise_floor, moving_noise_floor)";
+}
+
 template <typename T>
 std::string formatNumber(T value) {
   std::ostringstream out;
@@ -342,6 +353,11 @@ const std::vector<Field>& fields() {
       number(
           "moving_noise_floor", Group::kOrb, [](Params& p) -> double& { return p.orb.moving_noise_floor; }, 0.0, 50.0,
           "noise_floor while the camera moves (camera_motion)", movingNoiseFloorUnused),
+      number(
+          "floor_candidate_ratio", Group::kOrb, [](Params& p) -> double& { return p.orb.floor_candidate_ratio; }, 0.0,
+          100.0,
+          "> 0: of a level's corners above the noise floor, its floor_candidate_ratio x budget strongest at most",
+          floorCandidateRatioUnused),
       named(
           "camera_motion", Group::kOrb, [](Params& p) -> MotionMode& { return p.orb.camera_motion; }, parseMotionMode,
           "auto|still|moving",

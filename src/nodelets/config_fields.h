@@ -82,6 +82,7 @@ inline const std::vector<ConfigField<ExtractConfig>>& extractConfigFields() {
       {"candidate_ratio", &C::candidate_ratio},
       {"noise_floor", &C::noise_floor},
       {"moving_noise_floor", &C::moving_noise_floor},
+      {"floor_candidate_ratio", &C::floor_candidate_ratio},
       {"camera_motion", &C::camera_motion},
       {"n_levels", &C::n_levels},
       {"scale_factor", &C::scale_factor},

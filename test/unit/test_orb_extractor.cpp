@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -406,6 +407,54 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
   EXPECT_TRUE(same(run(1.5, 1e-6), run(0.0, 0.0)));
   // In between, more corners pass a lower floor: the selection changes with it.
   EXPECT_FALSE(same(run(0.0, 4.0), run(0.0, 12.0)));
+
+  // floor_candidate_ratio caps the corners above the floor at that many times the budget, the
+  // strongest: with a floor every corner passes, the candidate_ratio selection of the same ratio;
+  // with one no corner reaches, the budget's strongest still (a cap below 1 keeps those).
+  auto capped = [&](double cap, double floor) {
+    Params p;
+    p.threshold.threshold_scale = 0.3;
+    p.orb.noise_floor = floor;
+    p.orb.floor_candidate_ratio = cap;
+    return OrbExtractor(p).extract(noisy);
+  };
+  EXPECT_TRUE(same(capped(3.0, 1e-6), run(3.0, 0.0)));
+  EXPECT_FALSE(same(capped(3.0, 1e-6), run(0.0, 0.0)));
+  EXPECT_TRUE(same(capped(0.0, 1e-6), run(0.0, 0.0)));
+  EXPECT_TRUE(same(capped(0.5, 50.0), run(1.0, 0.0)));
+  EXPECT_TRUE(same(capped(3.0, 50.0), high));
+}
+
+// A moving camera's frames get the cap too: it qualifies whichever floor the frame's selection uses.
+TEST(Budget, FloorCandidateRatioCapsTheMovingSelection) {
+  const cv::Mat scene = test::syntheticScene(cv::Size(640, 480), 300);
+  Params p;
+  p.orb.camera_motion = MotionMode::kMoving;
+  const Extraction all = OrbExtractor(p).extract(scene);
+  p.orb.floor_candidate_ratio = 1.0;
+  const Extraction strongest = OrbExtractor(p).extract(scene);
+  ASSERT_EQ(all.keypoints.size(), strongest.keypoints.size());
+  // Capped at the budget, each level keeps its strongest corners: their weakest response is at
+  // least the uncapped selection's, and somewhere above it.
+  auto weakest = [](const Extraction& e, int octave) {
+    float least = std::numeric_limits<float>::max();
+    for (const cv::KeyPoint& kp : e.keypoints) {
+      if (kp.octave == octave) {
+        least = std::min(least, kp.response);
+      }
+    }
+    return least;
+  };
+  bool above = false;
+  for (int octave = 0; octave < p.orb.n_levels; ++octave) {
+    EXPECT_GE(weakest(strongest, octave), weakest(all, octave)) << octave;
+    above = above || weakest(strongest, octave) > weakest(all, octave);
+  }
+  EXPECT_TRUE(above);
+  p.orb.camera_motion = MotionMode::kStill;  // the still selection has no floor here: no change
+  const Extraction still = OrbExtractor(p).extract(scene);
+  p.orb.floor_candidate_ratio = 0.0;
+  EXPECT_EQ(cv::norm(still.descriptors, OrbExtractor(p).extract(scene).descriptors, cv::NORM_HAMMING), 0.0);
 }
 
 // The contract of the buffer-reusing extract(): a result the caller keeps keeps its values, the

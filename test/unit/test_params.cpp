@@ -365,6 +365,20 @@ TEST(Params, NoiseFloorIsAParameterLikeTheOthers) {
   p = Params();
   p.orb.max_features = 0;
   EXPECT_TRUE(inactive(p, "noise_floor: only used with a budget"));
+  // floor_candidate_ratio qualifies a noise floor: unused where no selection in use has one.
+  p = Params();
+  EXPECT_EQ(p.orb.floor_candidate_ratio, 0.0);
+  EXPECT_FALSE(inactive(p, "floor_candidate_ratio"));  // the moving selection's floor, 8
+  p.orb.camera_motion = MotionMode::kStill;
+  EXPECT_TRUE(inactive(p, "floor_candidate_ratio: only used with a noise floor"));
+  p.orb.noise_floor = 8.0;
+  EXPECT_FALSE(inactive(p, "floor_candidate_ratio"));
+  EXPECT_EQ(setParam(p, "floor_candidate_ratio", "8"), "");
+  EXPECT_DOUBLE_EQ(p.orb.floor_candidate_ratio, 8.0);
+  EXPECT_TRUE(validate(p).empty());
+  p.orb.floor_candidate_ratio = 101.0;
+  ASSERT_EQ(validate(p).size(), 1u);
+  EXPECT_NE(validate(p)[0].find("floor_candidate_ratio"), std::string::npos);
 }
 
 // Every parameter by its name, as text: the same value whichever way it was reached.
