@@ -214,26 +214,22 @@ const char* noiseFloorUnused(const Params& p) {
 const char* movingNoiseFloorUnused(const Params& p) {
   return either(budgetOnly(p), movingUnused(p));
 }
+// Whether a selection in use (the still camera's unless camera_motion is moving, the moving
+// camera's unless it is still) has a noise floor above 0 (`with_floor`) or none.
+bool selectionInUse(const Params& p, bool with_floor) {
+  const bool still = p.orb.camera_motion != MotionMode::kMoving && (p.orb.noise_floor > 0.0) == with_floor;
+  const bool moving = p.orb.camera_motion != MotionMode::kStill && (p.orb.moving_noise_floor > 0.0) == with_floor;
+  return still || moving;
+}
 const char* candidateRatioUnused(const Params& p) {
   const char* why = budgetOnly(p);
-  if (why) {
-    return why;
-  }
-  // Used by each selection in use whose noise floor is 0.
-  const bool still = p.orb.camera_motion != MotionMode::kMoving && p.orb.noise_floor == 0.0;
-  const bool moving = p.orb.camera_motion != MotionMode::kStill && p.orb.moving_noise_floor == 0.0;
-  return still || moving ? nullptr : "not used when the noise floor in use is > 0";
+  return why ? why : selectionInUse(p, false) ? nullptr : "not used when the noise floor in use is > 0";
 }
-
 const char* floorCandidateRatioUnused(const Params& p) {
   const char* why = budgetOnly(p);
-  if (why) {
-    return why;
-  }
-  // Used by each selection in use whose noise floor is above 0.
-  const bool still = p.orb.camera_motion != MotionMode::kMoving && p.orb.noise_floor > 0.0;
-  const bool moving = p.orb.camera_motion != MotionMode::kStill && p.orb.moving_noise_floor > 0.0;
-  return still || moving ? nullptr : "only used with a noise floor above 0 (noise_floor, moving_noise_floor)";
+  return why                       ? why
+         : selectionInUse(p, true) ? nullptr
+                                   : "only used with a noise floor above 0 (noise_floor, moving_noise_floor)";
 }
 
 template <typename T>

@@ -227,14 +227,12 @@ void selectByBudget(const OrbParams& orb, double noise, const std::vector<cv::Si
       // The corners that stand noise_floor x the noise above it, and at least the budget's
       // strongest: in a clean frame every real corner, in a noisy one the strongest only; with
       // floor_candidate_ratio, at most that many times the budget of them.
-      const auto above =
+      std::ptrdiff_t above =
           std::count_if(kps.begin(), kps.end(), [floor](const cv::KeyPoint& kp) { return kp.response >= floor; });
-      std::ptrdiff_t candidates = std::max<std::ptrdiff_t>(above, budget);
       if (orb.floor_candidate_ratio > 0.0) {
-        const auto most = static_cast<std::ptrdiff_t>(std::ceil(orb.floor_candidate_ratio * budget));
-        candidates = std::min(candidates, std::max<std::ptrdiff_t>(most, budget));
+        above = std::min(above, static_cast<std::ptrdiff_t>(std::ceil(orb.floor_candidate_ratio * budget)));
       }
-      keepStrongest(kps, static_cast<size_t>(candidates), ws.keys, ws.ranked);
+      keepStrongest(kps, static_cast<size_t>(std::max<std::ptrdiff_t>(above, budget)), ws.keys, ws.ranked);
     } else if (orb.candidate_ratio > 0.0) {
       keepStrongest(kps, static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)), ws.keys, ws.ranked);
     }

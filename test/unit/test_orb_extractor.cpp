@@ -379,11 +379,12 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
   cv::randn(noise, 0, 8);
   noisy.convertTo(noisy, CV_16S);
   cv::Mat(noisy + noise).convertTo(noisy, CV_8U);
-  auto run = [&](double ratio, double floor) {
+  auto run = [&](double ratio, double floor, double cap = 0.0) {
     Params p;
     p.threshold.threshold_scale = 0.3;
     p.orb.candidate_ratio = ratio;
     p.orb.noise_floor = floor;
+    p.orb.floor_candidate_ratio = cap;
     return OrbExtractor(p).extract(noisy);
   };
   auto same = [](const Extraction& a, const Extraction& b) {
@@ -411,13 +412,8 @@ TEST(Budget, NoiseFloorChoosesTheCandidatesByTheFramesNoise) {
   // floor_candidate_ratio caps the corners above the floor at that many times the budget, the
   // strongest: with a floor every corner passes, the candidate_ratio selection of the same ratio;
   // with one no corner reaches, the budget's strongest still (a cap below 1 keeps those).
-  auto capped = [&](double cap, double floor) {
-    Params p;
-    p.threshold.threshold_scale = 0.3;
-    p.orb.noise_floor = floor;
-    p.orb.floor_candidate_ratio = cap;
-    return OrbExtractor(p).extract(noisy);
-  };
+  // (candidate_ratio, set here to 1.5, is not used with a floor.)
+  auto capped = [&](double cap, double floor) { return run(1.5, floor, cap); };
   EXPECT_TRUE(same(capped(3.0, 1e-6), run(3.0, 0.0)));
   EXPECT_FALSE(same(capped(3.0, 1e-6), run(0.0, 0.0)));
   EXPECT_TRUE(same(capped(0.0, 1e-6), run(0.0, 0.0)));
