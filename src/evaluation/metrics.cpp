@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
@@ -215,7 +216,7 @@ GroundTruth rotationOnly(const Camera& camera1, const Camera& camera2, const Rel
 }
 
 PoseEstimate estimatePose(const Camera& camera1, const Camera& camera2, const std::vector<cv::Point2f>& p1,
-                          const std::vector<cv::Point2f>& p2) {
+                          const std::vector<cv::Point2f>& p2, int draw) {
   PoseEstimate estimate;
   if (p1.size() < 5 || p1.size() != p2.size()) {
     return estimate;
@@ -223,8 +224,16 @@ PoseEstimate estimatePose(const Camera& camera1, const Camera& camera2, const st
   std::vector<cv::Point2f> n1, n2;
   cv::undistortPoints(p1, n1, camera1.K, camera1.distortion);
   cv::undistortPoints(p2, n2, camera2.K, camera2.distortion);
+  if (draw > 0) {
+    // findEssentialMat's RANSAC seeds its own generator: shuffled matches give other samples.
+    cv::RNG rng(static_cast<std::uint64_t>(draw));
+    for (int i = static_cast<int>(n1.size()) - 1; i > 0; --i) {
+      const int j = rng.uniform(0, i + 1);
+      std::swap(n1[i], n1[j]);
+      std::swap(n2[i], n2[j]);
+    }
+  }
   const double focal = 0.25 * (camera1.K(0, 0) + camera1.K(1, 1) + camera2.K(0, 0) + camera2.K(1, 1));
-  cv::theRNG().state = 0x2545F4914F6CDD1DULL;  // the same RANSAC samples for every method
   cv::Mat mask;
   const cv::Mat E = cv::findEssentialMat(n1, n2, cv::Mat::eye(3, 3, CV_64F), cv::RANSAC, 0.999, 1.0 / focal, mask);
   if (E.rows != 3 || E.cols != 3) {
@@ -252,6 +261,19 @@ PoseError poseError(const PoseEstimate& estimate, const RelativePose& truth) {
     error.translation_deg = std::acos(cos_t) * 180.0 / CV_PI;
   }
   return error;
+}
+
+DrawnPose medianPoseOfDraws(const Camera& camera1, const Camera& camera2, const std::vector<cv::Point2f>& p1,
+                            const std::vector<cv::Point2f>& p2, const RelativePose& truth, int draws) {
+  std::vector<DrawnPose> drawn;
+  for (int draw = 0; draw < std::max(1, draws); ++draw) {
+    const PoseEstimate estimate = estimatePose(camera1, camera2, p1, p2, draw);
+    drawn.push_back({estimate, poseError(estimate, truth)});
+  }
+  const auto middle = drawn.begin() + static_cast<std::ptrdiff_t>((drawn.size() - 1) / 2);
+  std::nth_element(drawn.begin(), middle, drawn.end(),
+                   [](const DrawnPose& a, const DrawnPose& b) { return a.error.max() < b.error.max(); });
+  return *middle;
 }
 
 double poseAuc(std::vector<double> errors, double threshold) {

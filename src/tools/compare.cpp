@@ -75,6 +75,9 @@ options:
   --gaps LIST        --sequence frame gaps (default 1,5,10 at 20 Hz; 1,3,5 at 10 Hz)
   --sequence-every N --sequence: a relative-pose pair starts at every N-th frame (default 1)
   --poses FILE       --sequence on KITTI: the poses file (default DIR/poses.txt)
+  --pose-draws N     each relative pose (--euroc pairs, --sequence) estimated N times, the RANSAC
+                     drawing other samples each time (the matches shuffled), and the median error
+                     kept: less of one RANSAC's luck in an AUC (default 1: one draw, the tables')
   --write-sequence OUT  with --sequence (EuRoC): instead of comparing, write the frames of each
                      light condition as a EuRoC folder OUT/<condition> (and OUT/<condition>/times.txt),
                      the frames the comparison sees, for a SLAM system to run on
@@ -119,7 +122,7 @@ struct Options {
   std::vector<std::string> methods = ev::methodNames();
   std::vector<std::string> degradations;
   enhanced_orb::Params params;
-  int every = 5, pair_every = 3, stereo_every = 1, threads = 2;
+  int every = 5, pair_every = 3, stereo_every = 1, threads = 2, pose_draws = 1;
   std::vector<int> steps{1, 5, 10};
 };
 
@@ -357,8 +360,11 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
       }
       const ev::Camera& second = job.right ? *right.camera : *seq.camera;
       // A pose from a static pair is not defined: only stereo pairs and moving pairs are scored.
-      const ev::PoseEstimate pose = job.is_static ? ev::PoseEstimate() : ev::estimatePose(*seq.camera, second, p1, p2);
-      const ev::PoseError error = ev::poseError(pose, job.truth);
+      const ev::DrawnPose drawn = job.is_static
+                                      ? ev::DrawnPose{ev::PoseEstimate(), ev::PoseError()}
+                                      : ev::medianPoseOfDraws(*seq.camera, second, p1, p2, job.truth, o.pose_draws);
+      const ev::PoseEstimate& pose = drawn.estimate;
+      const ev::PoseError& error = drawn.error;
       std::ostringstream row;
       row << job.first << "," << (job.right ? std::string("stereo") : "+" + std::to_string(job.step)) << ","
           << job.is_static << "," << degradations[d].name << "," << method.label << "," << method.budget << ","
@@ -498,9 +504,11 @@ std::vector<PosePair> posePairs(const ev::Sequence& seq, int n, const std::vecto
   return pairs;
 }
 
-// One sequence_pose.csv row per pair: mutual matches, essential matrix, error against the truth.
+// One sequence_pose.csv row per pair: mutual matches, essential matrix (the median of pose_draws
+// RANSAC draws), error against the truth.
 std::vector<std::string> poseRows(const ev::Sequence& seq, const std::vector<PosePair>& pairs,
-                                  const std::vector<ev::Features>& fl, const std::string& prefix, int threads) {
+                                  const std::vector<ev::Features>& fl, const std::string& prefix, int pose_draws,
+                                  int threads) {
   std::vector<std::string> rows(pairs.size());
   parallelFor(static_cast<int>(pairs.size()), threads, [&](int, int k) {
     const PosePair& p = pairs[k];
@@ -512,8 +520,9 @@ std::vector<std::string> poseRows(const ev::Sequence& seq, const std::vector<Pos
       p1.push_back(a.keypoints[mt.queryIdx].pt);
       p2.push_back(b.keypoints[mt.trainIdx].pt);
     }
-    const ev::PoseEstimate pose = ev::estimatePose(seq.left, seq.left, p1, p2);
-    const ev::PoseError error = ev::poseError(pose, p.truth);
+    const ev::DrawnPose drawn = ev::medianPoseOfDraws(seq.left, seq.left, p1, p2, p.truth, pose_draws);
+    const ev::PoseEstimate& pose = drawn.estimate;
+    const ev::PoseError& error = drawn.error;
     std::ostringstream row;
     row << prefix << "," << p.first << "," << p.gap << "," << a.keypoints.size() << "," << matches.size() << ","
         << pose.inliers << "," << error.rotation_deg << "," << error.translation_deg << "\n";
@@ -580,7 +589,7 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
         }
       });
       const std::string prefix = seq.name + "," + light.name + "," + method.label + "," + std::to_string(method.budget);
-      const std::vector<std::string> pose_rows = poseRows(seq, pairs, fl, prefix, o.threads);
+      const std::vector<std::string> pose_rows = poseRows(seq, pairs, fl, prefix, o.pose_draws, o.threads);
       for (const std::string& r : pose_rows) {
         pose_csv << r;
       }
@@ -643,12 +652,13 @@ bool readOption(const std::string& arg, const std::string& v, Options& o, std::s
     }
     ok = ok && !list.empty();
   } else if (arg == "--every" || arg == "--pair-every" || arg == "--stereo-every" || arg == "--threads" ||
-             arg == "--sequence-every" || arg == "--max-frames") {
+             arg == "--sequence-every" || arg == "--max-frames" || arg == "--pose-draws") {
     int& target = arg == "--every"            ? o.every
                   : arg == "--pair-every"     ? o.pair_every
                   : arg == "--stereo-every"   ? o.stereo_every
                   : arg == "--sequence-every" ? o.sequence_every
                   : arg == "--max-frames"     ? o.max_frames
+                  : arg == "--pose-draws"     ? o.pose_draws
                                               : o.threads;
     ok = parsePositive(v, target) && target > 0;
   } else {

@@ -1,8 +1,10 @@
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
@@ -98,6 +100,51 @@ TEST(Pose, EstimateRecoversAKnownMotion) {
   EXPECT_LT(err.rotation_deg, 0.5);
   EXPECT_LT(err.translation_deg, 2.0);
   EXPECT_DOUBLE_EQ(ev::poseError(ev::PoseEstimate(), {R, t}).max(), 180.0);
+}
+
+TEST(Pose, DrawsTakeOtherSamplesAndTheMedianDrawIsKept) {
+  ev::Camera cam;
+  cam.K = cv::Matx33d(450, 0, 376, 0, 450, 240, 0, 0, 1);
+  cam.distortion = {0, 0, 0, 0};
+  cam.T_BS = cv::Matx44d::eye();
+  cv::Matx33d R;
+  cv::Rodrigues(cv::Vec3d(0.01, -0.02, 0.0175), R);
+  const cv::Vec3d t(0.05, 0.01, 0.3);  // forward, as a car drives: the pose's hard case
+  cv::RNG rng(5);
+  std::vector<cv::Point2f> p1, p2;
+  for (int i = 0; i < 300; ++i) {
+    const cv::Vec3d X(rng.uniform(-2.0, 2.0), rng.uniform(-1.5, 1.5), rng.uniform(3.0, 8.0));
+    const cv::Vec3d Y = R * X + t;
+    const cv::Vec3d a = cam.K * X, b = cam.K * Y;
+    p1.emplace_back(static_cast<float>(a[0] / a[2] + rng.gaussian(0.7)),
+                    static_cast<float>(a[1] / a[2] + rng.gaussian(0.7)));
+    if (i % 3 == 0) {  // a third of the matches wrong
+      p2.emplace_back(static_cast<float>(rng.uniform(0.0, 752.0)), static_cast<float>(rng.uniform(0.0, 480.0)));
+    } else {
+      p2.emplace_back(static_cast<float>(b[0] / b[2] + rng.gaussian(0.7)),
+                      static_cast<float>(b[1] / b[2] + rng.gaussian(0.7)));
+    }
+  }
+  const ev::RelativePose truth{R, t};
+  std::vector<double> errors;
+  for (int draw = 0; draw < 5; ++draw) {
+    const ev::PoseEstimate est = ev::estimatePose(cam, cam, p1, p2, draw);
+    ASSERT_TRUE(est.ok) << draw;
+    errors.push_back(ev::poseError(est, truth).max());
+  }
+  // Draw 0 is the matches in their order, as estimatePose() takes them by default.
+  EXPECT_EQ(ev::poseError(ev::estimatePose(cam, cam, p1, p2), truth).max(), errors[0]);
+  // Another order gives the RANSAC other samples, and so another estimate.
+  EXPECT_GT(*std::max_element(errors.begin(), errors.end()) - *std::min_element(errors.begin(), errors.end()), 0.0);
+  std::vector<double> sorted = errors;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(ev::medianPoseOfDraws(cam, cam, p1, p2, truth, 5).error.max(), sorted[2]);
+  std::vector<double> four(errors.begin(), errors.begin() + 4);
+  std::sort(four.begin(), four.end());
+  EXPECT_EQ(ev::medianPoseOfDraws(cam, cam, p1, p2, truth, 4).error.max(), four[1]);  // the lower middle
+  EXPECT_EQ(ev::medianPoseOfDraws(cam, cam, p1, p2, truth, 1).error.max(), errors[0]);
+  EXPECT_EQ(ev::medianPoseOfDraws(cam, cam, p1, p2, truth, 0).error.max(), errors[0]);
+  EXPECT_LT(sorted[2], 5.0);  // the median draw finds the motion
 }
 
 TEST(Degrade, LowLightDarkensAndAddsSignalDependentNoise) {

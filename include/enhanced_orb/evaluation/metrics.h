@@ -87,7 +87,9 @@ GroundTruth rotationOnly(const Camera& camera1, const Camera& camera2, const Rel
                          double tolerance = 3.0);
 
 // Relative pose from matched pixels, as a monocular front end estimates it: undistorted points,
-// essential matrix by RANSAC (1 px, confidence 0.999, a fixed seed), cheirality check.
+// essential matrix by RANSAC (1 px, confidence 0.999), cheirality check. OpenCV's RANSAC draws its
+// samples with a fixed seed, so `draw` 0 takes the matches in their order and draw k > 0 in an order
+// shuffled by seed k: other samples, as another run of a front end would draw (poseOfDraws()).
 struct PoseEstimate {
   bool ok = false;  // false: fewer than 5 matches or no essential matrix
   int inliers = 0;  // matches consistent with the estimate
@@ -95,7 +97,7 @@ struct PoseEstimate {
   cv::Vec3d t;
 };
 PoseEstimate estimatePose(const Camera& camera1, const Camera& camera2, const std::vector<cv::Point2f>& p1,
-                          const std::vector<cv::Point2f>& p2);
+                          const std::vector<cv::Point2f>& p2, int draw = 0);
 
 // Angular errors in degrees: of the rotation, and of the translation's direction (sign-free, as the
 // scale and sign of a monocular translation are not observable). Both 180 when `estimate` failed.
@@ -105,6 +107,17 @@ struct PoseError {
   double max() const { return rotation_deg > translation_deg ? rotation_deg : translation_deg; }
 };
 PoseError poseError(const PoseEstimate& estimate, const RelativePose& truth);
+
+// The pose of matched pixels estimated `draws` times (draws 0 to draws - 1 of estimatePose()) and
+// the one whose error is the median (the lower of the two middle ones for an even count): a single
+// RANSAC's luck moves a sequence's pose AUC by several hundredths (docs/RESULTS.md), the median of
+// a few draws far less. draws <= 1: draw 0 alone.
+struct DrawnPose {
+  PoseEstimate estimate;
+  PoseError error;
+};
+DrawnPose medianPoseOfDraws(const Camera& camera1, const Camera& camera2, const std::vector<cv::Point2f>& p1,
+                            const std::vector<cv::Point2f>& p2, const RelativePose& truth, int draws);
 
 // Area under the recall curve of `errors` up to `threshold`, normalised to [0, 1] (1: every error 0).
 double poseAuc(std::vector<double> errors, double threshold);
