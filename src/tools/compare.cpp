@@ -360,9 +360,8 @@ void compareEuroc(const Options& o, const std::vector<Runner>& all) {
       }
       const ev::Camera& second = job.right ? *right.camera : *seq.camera;
       // A pose from a static pair is not defined: only stereo pairs and moving pairs are scored.
-      const ev::DrawnPose drawn = job.is_static
-                                      ? ev::DrawnPose{ev::PoseEstimate(), ev::PoseError()}
-                                      : ev::medianPoseOfDraws(*seq.camera, second, p1, p2, job.truth, o.pose_draws);
+      const ev::DrawnPose drawn =
+          job.is_static ? ev::DrawnPose() : ev::medianPoseOfDraws(*seq.camera, second, p1, p2, job.truth, o.pose_draws);
       const ev::PoseEstimate& pose = drawn.estimate;
       const ev::PoseError& error = drawn.error;
       std::ostringstream row;

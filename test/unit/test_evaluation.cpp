@@ -77,13 +77,28 @@ TEST(Pose, AucOfPerfectAndFailedEstimates) {
   EXPECT_NEAR(ev::poseAuc({0.0, 180.0}, 10.0), 0.5, 1e-9);  // half the pairs perfect
 }
 
-TEST(Pose, EstimateRecoversAKnownMotion) {
+namespace {
+
+// A 752x480 pinhole camera without distortion, and a small rotation, for the pose tests.
+ev::Camera poseTestCamera() {
   ev::Camera cam;
   cam.K = cv::Matx33d(450, 0, 376, 0, 450, 240, 0, 0, 1);
   cam.distortion = {0, 0, 0, 0};
   cam.T_BS = cv::Matx44d::eye();
+  return cam;
+}
+
+cv::Matx33d poseTestRotation() {
   cv::Matx33d R;
   cv::Rodrigues(cv::Vec3d(0.01, -0.02, 0.0175), R);
+  return R;
+}
+
+}  // namespace
+
+TEST(Pose, EstimateRecoversAKnownMotion) {
+  const ev::Camera cam = poseTestCamera();
+  const cv::Matx33d R = poseTestRotation();
   const cv::Vec3d t(0.3, 0.05, 0.02);
   cv::RNG rng(3);
   std::vector<cv::Point2f> p1, p2;
@@ -103,12 +118,8 @@ TEST(Pose, EstimateRecoversAKnownMotion) {
 }
 
 TEST(Pose, DrawsTakeOtherSamplesAndTheMedianDrawIsKept) {
-  ev::Camera cam;
-  cam.K = cv::Matx33d(450, 0, 376, 0, 450, 240, 0, 0, 1);
-  cam.distortion = {0, 0, 0, 0};
-  cam.T_BS = cv::Matx44d::eye();
-  cv::Matx33d R;
-  cv::Rodrigues(cv::Vec3d(0.01, -0.02, 0.0175), R);
+  const ev::Camera cam = poseTestCamera();
+  const cv::Matx33d R = poseTestRotation();
   const cv::Vec3d t(0.05, 0.01, 0.3);  // forward, as a car drives: the pose's hard case
   cv::RNG rng(5);
   std::vector<cv::Point2f> p1, p2;
