@@ -68,10 +68,12 @@ struct EnhanceParams {
   GammaMode gamma_mode = GammaMode::kAlways;
   // gamma_mode while the camera moves (OrbParams::camera_motion): a moving camera's consecutive
   // frames share their exposure, so their descriptors need no tone normalisation, and on a dim
-  // frame the curve mostly stretches the noise of the dark tones (docs/RESULTS.md, "Driving").
-  // auto tests the stream's recent frames, not each frame alone (CameraMotion::kToneFrames). The
-  // ORB-SLAM adapter takes always unless its file sets this (orb_slam_extractor.h).
-  GammaMode moving_gamma_mode = GammaMode::kAuto;
+  // frame the curve mostly stretches the noise of the dark tones; never, since relative pose from
+  // the median of five RANSAC draws gains without it in good light on a car and in fading light
+  // indoors (docs/RESULTS.md, "A moving camera's tone curve"). auto tests the stream's recent
+  // frames, not each frame alone (CameraMotion::kToneFrames). The ORB-SLAM adapter takes always
+  // unless its file sets this (orb_slam_extractor.h).
+  GammaMode moving_gamma_mode = GammaMode::kNever;
   // Threads one enhancement uses (horizontal bands, through cv::parallel_for_); the result is the
   // same for any count. [1, 64]
   int threads = 1;

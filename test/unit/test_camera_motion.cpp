@@ -374,7 +374,9 @@ TEST(CameraMotion, TwoThreadsEnhanceWhileJudgingWithTheResultsOfOne) {
   for (int i = 0; i < 3; ++i) {
     frames.push_back(frames.back().clone());
   }
-  Params one_thread, two_threads;
+  Params one_thread;
+  one_thread.enhance.moving_gamma_mode = GammaMode::kAuto;  // the stream's quality test decides the curve
+  Params two_threads = one_thread;
   two_threads.orb.threads = two_threads.enhance.threads = 2;
   const OrbExtractor a(one_thread), b(two_threads);
   CameraMotion motion_a, motion_b;
@@ -398,10 +400,10 @@ TEST(CameraMotion, TwoThreadsEnhanceWhileJudgingWithTheResultsOfOne) {
   EXPECT_GE(curve_changes, 3) << "the stream changes the quality test's outcome";
 }
 
-// A moving camera's frame is enhanced with moving_gamma_mode (auto: the paper's quality test), a
-// still camera's with gamma_mode (always): a dim, flat frame gets the tone curve only when still,
-// a contrasty one both ways.
-TEST(CameraMotion, AMovingCamerasFrameGetsTheToneCurveByTheQualityTest) {
+// A moving camera's frame is enhanced with moving_gamma_mode (never by default; auto: the paper's
+// quality test), a still camera's with gamma_mode (always): a dim, flat frame gets the tone curve
+// only when still, a contrasty one both ways with auto and only when still by default.
+TEST(CameraMotion, AMovingCamerasFrameGetsTheToneCurveByItsMode) {
   cv::RNG rng(7);
   const cv::Mat dim = underLight(view(scene(), 10, 10), 0.25, 1.5, rng);
   ASSERT_LE(imageLambda(dim), Params().enhance.std_threshold);  // not poor by the paper's test
@@ -425,19 +427,26 @@ TEST(CameraMotion, AMovingCamerasFrameGetsTheToneCurveByTheQualityTest) {
   Extraction curved;
   OrbExtractor(always).extract(dim, moving, curved);
   EXPECT_EQ(cv::norm(curved.image, still_frame.image, cv::NORM_INF), 0.0);
-  // A contrasty frame is poor by the paper's test: the curve runs for a moving camera too.
+  // A contrasty frame is poor by the paper's test: with moving_gamma_mode auto the curve runs for a
+  // moving camera too; by default it does not.
   cv::Mat contrasty;
   view(scene(), 10, 10).convertTo(contrasty, CV_8U, 3.0, -250.0);
   ASSERT_GT(imageLambda(contrasty), Params().enhance.std_threshold);
-  Extraction a, b;
+  Params tested;
+  tested.enhance.moving_gamma_mode = GammaMode::kAuto;
+  Extraction a, b, c;
   automatic.extract(contrasty, a);
-  automatic.extract(contrasty, moving, b);
+  OrbExtractor(tested).extract(contrasty, moving, b);
   EXPECT_EQ(cv::norm(a.image, b.image, cv::NORM_INF), 0.0);
+  automatic.extract(contrasty, moving, c);
+  EXPECT_EQ(cv::norm(c.image, enhance(contrasty, never).image, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a.image, c.image, cv::NORM_INF), 10.0);
 }
 
-// A moving camera's frames are enhanced alike: the quality test reads the least lambda of the
-// stream's last kToneFrames frames. A contrasty frame between dim ones (flickering light) gets no
-// curve, as they do; once kToneFrames contrasty frames have passed it gets it, as a still frame would.
+// A moving camera's frames are enhanced alike: with moving_gamma_mode auto the quality test reads
+// the least lambda of the stream's last kToneFrames frames. A contrasty frame between dim ones
+// (flickering light) gets no curve, as they do; once kToneFrames contrasty frames have passed it
+// gets it, as a still frame would.
 TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
   const double threshold = Params().enhance.std_threshold;
   cv::RNG rng(11);
@@ -452,7 +461,9 @@ TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
   };
   CameraMotion motion;
   EXPECT_DOUBLE_EQ(motion.streamLambda(), -1.0);
-  const OrbExtractor extractor;
+  Params tested;  // the quality test for a moving camera's frames
+  tested.enhance.moving_gamma_mode = GammaMode::kAuto;
+  const OrbExtractor extractor(tested);
   ExtractOptions options;
   Extraction out;
   int i = 0;
@@ -486,7 +497,9 @@ TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
   EXPECT_DOUBLE_EQ(motion.streamLambda(), imageLambda(last));
   // camera_motion moving (the motion preset) reads the stream's lambda too: a contrasty frame after
   // dim ones gets no curve.
-  const OrbExtractor motion_preset(Params::motion());
+  Params motion_tested = Params::motion();
+  motion_tested.enhance.moving_gamma_mode = GammaMode::kAuto;
+  const OrbExtractor motion_preset(motion_tested);
   CameraMotion stream;
   for (int k = 0; k < 3; ++k) {
     motion_preset.extract(frame(k, false), stream, options, out);

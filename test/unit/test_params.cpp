@@ -229,13 +229,19 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
     return false;
   };
   const std::vector<std::string> def = inactiveParameters(Params());
-  EXPECT_FALSE(has(def, "std_threshold"));  // gamma_mode always, but moving_gamma_mode auto
+  EXPECT_TRUE(has(def, "std_threshold"));  // gamma_mode always, moving_gamma_mode never
+  Params tested;
+  tested.enhance.moving_gamma_mode = GammaMode::kAuto;
+  EXPECT_FALSE(has(inactiveParameters(tested), "std_threshold"));  // a moving camera's frames tested
   Params still_only;
   still_only.orb.camera_motion = MotionMode::kStill;
   EXPECT_TRUE(has(inactiveParameters(still_only), "std_threshold"));      // gamma_mode always
   EXPECT_TRUE(has(inactiveParameters(still_only), "moving_gamma_mode"));  // never moving
   EXPECT_TRUE(has(inactiveParameters(Params::motion()), "gamma_mode"));   // always moving
-  EXPECT_FALSE(has(inactiveParameters(Params::motion()), "std_threshold"));
+  EXPECT_TRUE(has(inactiveParameters(Params::motion()), "alpha"));        // no tone curve while moving
+  Params motion_tested = Params::motion();
+  motion_tested.enhance.moving_gamma_mode = GammaMode::kAuto;
+  EXPECT_FALSE(has(inactiveParameters(motion_tested), "std_threshold"));
   EXPECT_TRUE(has(def, "fast_threshold"));
   EXPECT_FALSE(has(def, "alpha"));
   EXPECT_FALSE(has(def, "tau"));
@@ -272,6 +278,7 @@ TEST(Params, InactiveParametersAreNamedWithTheirReason) {
   EXPECT_FALSE(has(none, "enhance"));
   Params never;
   never.enhance.gamma_mode = GammaMode::kNever;
+  never.enhance.moving_gamma_mode = GammaMode::kAuto;
   EXPECT_FALSE(has(inactiveParameters(never), "alpha"));  // a moving camera's frame may still get the curve
   never.enhance.moving_gamma_mode = GammaMode::kNever;
   const std::vector<std::string> flat = inactiveParameters(never);
@@ -420,8 +427,10 @@ TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
   EXPECT_DOUBLE_EQ(p.forFrame(true).threshold.threshold_scale, 0.1);
   EXPECT_DOUBLE_EQ(p.forFrame(true).orb.noise_floor, 5.0);
   EXPECT_EQ(p.forFrame(false).enhance.gamma_mode, GammaMode::kAlways);
-  EXPECT_EQ(p.forFrame(true).enhance.gamma_mode, GammaMode::kAuto);  // moving_gamma_mode
+  EXPECT_EQ(p.forFrame(true).enhance.gamma_mode, GammaMode::kNever);  // moving_gamma_mode
   // With the stream's lambda, moving_gamma_mode auto is decided on it; a still frame ignores it.
+  p.enhance.moving_gamma_mode = GammaMode::kAuto;
+  EXPECT_EQ(p.forFrame(true).enhance.gamma_mode, GammaMode::kAuto);
   EXPECT_EQ(p.forFrame(true, 0.26).enhance.gamma_mode, GammaMode::kAlways);
   EXPECT_EQ(p.forFrame(true, 0.25).enhance.gamma_mode, GammaMode::kNever);  // not above std_threshold
   EXPECT_EQ(p.forFrame(true, 0.0).enhance.gamma_mode, GammaMode::kNever);
@@ -432,12 +441,16 @@ TEST(Params, CameraMotionChoosesTheSelectionOfAFrame) {
   p.enhance.moving_gamma_mode = GammaMode::kNever;
   EXPECT_EQ(p.forFrame(true, 0.9).enhance.gamma_mode, GammaMode::kNever);
   p.enhance.moving_gamma_mode = GammaMode::kAuto;
-  // Who judges a stream: the default mode's extraction and enhancement, the motion preset's
-  // enhancement (its frames' lambda), neither for a still camera or the paper.
+  // Who judges a stream: the default mode's extraction and enhancement (a moving camera's frames
+  // get no curve, a still one's do), the motion preset's enhancement only with moving_gamma_mode
+  // auto (its frames' lambda), neither for a still camera or the paper.
   EXPECT_TRUE(Params().judgesStream());
   EXPECT_TRUE(Params().enhancementJudgesStream());
-  EXPECT_TRUE(Params::motion().judgesStream());
-  EXPECT_TRUE(Params::motion().enhancementJudgesStream());
+  EXPECT_FALSE(Params::motion().judgesStream());  // the moving selection and no curve, whatever comes
+  Params motion_tested = Params::motion();
+  motion_tested.enhance.moving_gamma_mode = GammaMode::kAuto;
+  EXPECT_TRUE(motion_tested.judgesStream());
+  EXPECT_TRUE(motion_tested.enhancementJudgesStream());
   EXPECT_FALSE(Params::paper().judgesStream());
   EXPECT_FALSE(Params::baseline().judgesStream());
   Params fixed_curve = Params::motion();
