@@ -49,6 +49,13 @@ const cv::Mat& scene() {
 
 #define REQUIRE_FRAMES(frames, dir) REQUIRE_SHARED_DATA(!(frames).empty(), std::string("frames under ") + (dir))
 
+// `p` with a moving camera's tone curve decided by the stream's quality test (moving_gamma_mode
+// auto) instead of the default's none.
+Params qualityTested(Params p = Params()) {
+  p.enhance.moving_gamma_mode = GammaMode::kAuto;
+  return p;
+}
+
 TEST(CameraMotion, MeasuresTheShiftOfTheView) {
   for (double dx : {5.0, 12.0, 40.0, -25.0}) {
     CameraMotion motion;
@@ -374,8 +381,7 @@ TEST(CameraMotion, TwoThreadsEnhanceWhileJudgingWithTheResultsOfOne) {
   for (int i = 0; i < 3; ++i) {
     frames.push_back(frames.back().clone());
   }
-  Params one_thread;
-  one_thread.enhance.moving_gamma_mode = GammaMode::kAuto;  // the stream's quality test decides the curve
+  const Params one_thread = qualityTested();  // the stream's quality test decides the curve
   Params two_threads = one_thread;
   two_threads.orb.threads = two_threads.enhance.threads = 2;
   const OrbExtractor a(one_thread), b(two_threads);
@@ -432,11 +438,9 @@ TEST(CameraMotion, AMovingCamerasFrameGetsTheToneCurveByItsMode) {
   cv::Mat contrasty;
   view(scene(), 10, 10).convertTo(contrasty, CV_8U, 3.0, -250.0);
   ASSERT_GT(imageLambda(contrasty), Params().enhance.std_threshold);
-  Params tested;
-  tested.enhance.moving_gamma_mode = GammaMode::kAuto;
   Extraction a, b, c;
   automatic.extract(contrasty, a);
-  OrbExtractor(tested).extract(contrasty, moving, b);
+  OrbExtractor(qualityTested()).extract(contrasty, moving, b);
   EXPECT_EQ(cv::norm(a.image, b.image, cv::NORM_INF), 0.0);
   automatic.extract(contrasty, moving, c);
   EXPECT_EQ(cv::norm(c.image, enhance(contrasty, never).image, cv::NORM_INF), 0.0);
@@ -461,9 +465,7 @@ TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
   };
   CameraMotion motion;
   EXPECT_DOUBLE_EQ(motion.streamLambda(), -1.0);
-  Params tested;  // the quality test for a moving camera's frames
-  tested.enhance.moving_gamma_mode = GammaMode::kAuto;
-  const OrbExtractor extractor(tested);
+  const OrbExtractor extractor(qualityTested());
   ExtractOptions options;
   Extraction out;
   int i = 0;
@@ -495,11 +497,9 @@ TEST(CameraMotion, AMovingCamerasFramesAreEnhancedAlike) {
   EXPECT_DOUBLE_EQ(motion.streamLambda(), -1.0);
   motion.update(last);
   EXPECT_DOUBLE_EQ(motion.streamLambda(), imageLambda(last));
-  // camera_motion moving (the motion preset) reads the stream's lambda too: a contrasty frame after
-  // dim ones gets no curve.
-  Params motion_tested = Params::motion();
-  motion_tested.enhance.moving_gamma_mode = GammaMode::kAuto;
-  const OrbExtractor motion_preset(motion_tested);
+  // camera_motion moving (the motion preset) with moving_gamma_mode auto reads the stream's lambda
+  // too: a contrasty frame after dim ones gets no curve.
+  const OrbExtractor motion_preset(qualityTested(Params::motion()));
   CameraMotion stream;
   for (int k = 0; k < 3; ++k) {
     motion_preset.extract(frame(k, false), stream, options, out);
