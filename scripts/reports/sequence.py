@@ -31,8 +31,17 @@ LIGHT = {
     "lights_out": "x0.1 from the middle on, auto gain catching up over ~10 frames",
     "flicker": "alternate frames x1 and x0.5",
     "lamp": "dark room (x0.03), lamp on the camera: bright centre",
-    "dip": "x0.02 from a third of the sequence to five sixths (frames 100-250 of 300), auto gain",
+    "dip": "x0.02 from a third of the sequence to five sixths (frames {dip_from}-{dip_to} of {frames}), auto gain",
 }
+
+
+def light_text(condition, frames):
+    """How a light condition changes the light over a sequence of `frames` frames (sequence.cpp's
+    LightCondition: the dip's frames scale with the sequence, rounded half up)."""
+    half_up = lambda x: int(math.floor(x + 0.5))
+    return LIGHT.get(condition, "").format(dip_from=half_up(100 * frames / 300), dip_to=half_up(250 * frames / 300),
+                                           frames=frames)
+
 
 INTRO = """## Real camera motion: relative pose and stereo tracking in every light
 
@@ -375,7 +384,7 @@ def main(args):
 
     intro = INTRO if section == "sequence" else DRIVING_INTRO + TRIED.get(sequence, "")
     out = [intro.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)), losses=LOSSES,
-                        conditions="; ".join("`%s` %s" % (c, LIGHT.get(c, "")) for c in conditions))]
+                        conditions="; ".join("`%s` %s" % (c, light_text(c, frames)) for c in conditions))]
 
     # The verdict at every budget: the default mode against the best rival, both measures.
     for b in budgets:

@@ -62,6 +62,15 @@ cv::Matx44d rigTransform(const Camera& camera1, const Camera& camera2) {
   return camera2.T_BS.inv() * camera1.T_BS;
 }
 
+// The folder's own name, also when `dir` ends in a separator ("kitti/turn_51/" is turn_51).
+std::string folderName(const std::string& dir) {
+  fs::path p = fs::path(dir).lexically_normal();
+  if (p.filename().empty()) {
+    p = p.parent_path();
+  }
+  return p.filename().string();
+}
+
 }  // namespace
 
 Sequence readEurocSequence(const std::string& dir) {
@@ -73,7 +82,7 @@ Sequence readEurocSequence(const std::string& dir) {
     fail(left.mav0 + "/state_groundtruth_estimate0/data.csv: missing or without poses");
   }
   Sequence seq;
-  seq.name = fs::path(dir).lexically_normal().filename().string();
+  seq.name = folderName(dir);
   if (seq.name.empty() || seq.name == "mav0") {
     seq.name = fs::path(left.mav0).parent_path().filename().string();
   }
@@ -122,7 +131,7 @@ Sequence readKittiSequence(const std::string& dir, const std::string& poses_file
   }
   const auto P1 = kittiProjection(calib, "P1");
   Sequence seq;
-  seq.name = root.lexically_normal().filename().string();
+  seq.name = folderName(dir);
   seq.format = "kitti";
   seq.rate_hz = 10.0;
   const cv::Matx33d K((*P0)(0, 0), 0, (*P0)(0, 2), 0, (*P0)(1, 1), (*P0)(1, 2), 0, 0, 1);

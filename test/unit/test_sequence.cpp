@@ -117,6 +117,8 @@ TEST(Sequence, EurocSequenceWithPosesAtTheFrameTimes) {
   write(mav0 / "state_groundtruth_estimate0" / "data.csv", gt);
   const ev::Sequence seq = ev::readSequence(dir.path.string());
   EXPECT_EQ(seq.format, "euroc");
+  EXPECT_EQ(seq.name, dir.path.filename().string());
+  EXPECT_EQ(ev::readSequence(dir.path.string() + "/").name, seq.name);
   ASSERT_EQ(seq.frames.size(), 3u);
   ASSERT_EQ(seq.right_frames.size(), 3u);
   EXPECT_DOUBLE_EQ(seq.rate_hz, 20.0);
@@ -145,6 +147,9 @@ TEST(Sequence, KittiSequenceWithItsBaseline) {
   write(dir.path / "poses.txt", poses);
   const ev::Sequence seq = ev::readSequence(dir.path.string());
   EXPECT_EQ(seq.format, "kitti");
+  EXPECT_EQ(seq.name, dir.path.filename().string());
+  // A folder given with a separator at its end (as a shell's glob lists it) keeps its name.
+  EXPECT_EQ(ev::readSequence(dir.path.string() + "/").name, seq.name);
   ASSERT_EQ(seq.frames.size(), 4u);
   ASSERT_TRUE(seq.right.has_value());
   EXPECT_NEAR(seq.right->T_BS(0, 3), 0.54, 1e-12);  // 378 / 700 m to the right
