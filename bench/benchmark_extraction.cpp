@@ -5,11 +5,9 @@
 // allocations per frame (operator new and cv::Mat buffers) once its workspaces are warm.
 //
 //   devel/lib/enhanced_orb/benchmark_extraction [--frames DIR] [google benchmark options]
-#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <new>
 #include <string>
 #include <vector>
 
@@ -20,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "allocation_count.h"
 #include "enhanced_orb/adaptive_threshold.h"
 #include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/enhance.h"
@@ -29,59 +28,10 @@
 #include "enhanced_orb/rbrief.h"
 #include "enhanced_orb/simd.h"
 
-// Every allocation through operator new in the process (the libraries' included) is counted.
-// (GCC takes the free() of a replaced operator delete for a mismatch.)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size ? size : 1)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  return operator new(size);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-
 namespace eo = enhanced_orb;
 namespace fs = std::filesystem;
 
 namespace {
-
-// cv::Mat buffers come from cv::fastMalloc, not operator new: counted by wrapping OpenCV's allocator.
-class CountingMatAllocator : public cv::MatAllocator {
-public:
-  cv::UMatData* allocate(int dims, const int* sizes, int type, void* data, size_t* step, cv::AccessFlag flags,
-                         cv::UMatUsageFlags usage) const override {
-    if (!data) {
-      g_allocations.fetch_add(1, std::memory_order_relaxed);
-    }
-    return base_->allocate(dims, sizes, type, data, step, flags, usage);
-  }
-  bool allocate(cv::UMatData* data, cv::AccessFlag flags, cv::UMatUsageFlags usage) const override {
-    return base_->allocate(data, flags, usage);
-  }
-  void deallocate(cv::UMatData* data) const override { base_->deallocate(data); }
-
-private:
-  cv::MatAllocator* base_ = cv::Mat::getStdAllocator();
-};
 
 // OpenCV's pool for one benchmark, back to one thread afterwards.
 struct ThreadScope {
@@ -151,12 +101,12 @@ void BM_CameraMotion(benchmark::State& state) {
   for (; i < 3; ++i) {
     motion.update(stream[i % stream.size()]);
   }
-  const long before = g_allocations.load();
+  const long before = eo::bench::allocations();
   for (auto _ : state) {
     benchmark::DoNotOptimize(motion.update(stream[i++ % stream.size()]));
   }
   state.counters["allocs_per_frame"] =
-      static_cast<double>(g_allocations.load() - before) / static_cast<double>(state.iterations());
+      static_cast<double>(eo::bench::allocations() - before) / static_cast<double>(state.iterations());
   state.SetLabel(moving ? "moving camera: thumbnail, one DFT, one inverse DFT"
                         : "still camera: thumbnail, one DFT, two inverse DFTs");
 }
@@ -312,12 +262,12 @@ void BM_Frame(benchmark::State& state) {
     for (size_t warm = 0; warm < frames().size(); ++warm) {
       orb->detectAndCompute(cycle.next(), cv::noArray(), kps, d);
     }
-    const long before = g_allocations.load();
+    const long before = eo::bench::allocations();
     for (auto _ : state) {
       orb->detectAndCompute(cycle.next(), cv::noArray(), kps, d);
       keypoints += kps.size();
     }
-    allocations = g_allocations.load() - before;
+    allocations = eo::bench::allocations() - before;
   } else {
     const bool stream = method == kDefault || method == kDefaultMoving;
     eo::Params p = method == kPaper ? eo::Params::paper() : stream ? eo::Params() : eo::Params::baseline();
@@ -346,12 +296,12 @@ void BM_Frame(benchmark::State& state) {
     for (size_t warm = 0; warm < frames().size(); ++warm) {
       run(cycle.next());
     }
-    const long before = g_allocations.load();
+    const long before = eo::bench::allocations();
     for (auto _ : state) {
       run(cycle.next());
       keypoints += out.keypoints.size();
     }
-    allocations = g_allocations.load() - before;
+    allocations = eo::bench::allocations() - before;
   }
   eo::setSimdLevel(saved);
   const double iterations = static_cast<double>(state.iterations());
@@ -424,8 +374,7 @@ int main(int argc, char** argv) {
     std::cerr << "benchmark_extraction: no readable image in " << dir << "\n";
     return 1;
   }
-  static CountingMatAllocator counting;
-  cv::Mat::setDefaultAllocator(&counting);
+  const eo::bench::MatBufferCount mat_buffers;
   cv::setNumThreads(1);  // single-threaded unless a benchmark says otherwise, every method alike
   stages();              // prepared before timing starts
   benchmark::AddCustomContext("simd", eo::toString(eo::activeSimdLevel()));

@@ -30,8 +30,11 @@ target_link_libraries(test_camera_motion enhanced_orb_evaluation ${ENHANCED_ORB_
 get_filename_component(ENHANCED_ORB_SHARED_DATA "${ENHANCED_ORB_EUROC_DIR}/../.." ABSOLUTE)
 target_compile_definitions(test_camera_motion PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}"
   ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}" ENHANCED_ORB_SHARED_DATA="${ENHANCED_ORB_SHARED_DATA}")
-# Allocations per frame of a camera's stream, either selection (replaces operator new: a binary of its own).
-enhanced_orb_add_gtest(test_allocations ${ENHANCED_ORB_ROOT}/test/unit/test_allocations.cpp)
+# Allocations per frame of a camera's stream, either selection (the benchmark's counter replaces
+# operator new: a binary of its own).
+enhanced_orb_add_gtest(test_allocations ${ENHANCED_ORB_ROOT}/test/unit/test_allocations.cpp
+  ${ENHANCED_ORB_ROOT}/bench/allocation_count.cpp)
+target_include_directories(test_allocations PRIVATE ${ENHANCED_ORB_ROOT}/bench)
 target_link_libraries(test_allocations enhanced_orb_core ${OpenCV_LIBRARIES} ${ENHANCED_ORB_GTEST_MAIN})
 target_compile_definitions(test_allocations PRIVATE ENHANCED_ORB_EUROC_DIR="${ENHANCED_ORB_EUROC_DIR}"
   ENHANCED_ORB_MOVING_DIR="${ENHANCED_ORB_MOVING_DIR}")

@@ -4,67 +4,17 @@
 // included), as the benchmark counts them (bench/benchmark_extraction.cpp, allocs_per_frame).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "allocation_count.h"
 #include "enhanced_orb/camera_motion.h"
 #include "enhanced_orb/orb_extractor.h"
 #include "test_images.h"
 
-// (GCC takes the free() of a replaced operator delete for a mismatch.)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size ? size : 1)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  return operator new(size);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-
 namespace enhanced_orb {
 namespace {
-
-// cv::Mat buffers come from cv::fastMalloc, not operator new: counted by wrapping OpenCV's allocator.
-class CountingMatAllocator : public cv::MatAllocator {
-public:
-  cv::UMatData* allocate(int dims, const int* sizes, int type, void* data, size_t* step, cv::AccessFlag flags,
-                         cv::UMatUsageFlags usage) const override {
-    if (!data) {
-      g_allocations.fetch_add(1, std::memory_order_relaxed);
-    }
-    return base_->allocate(dims, sizes, type, data, step, flags, usage);
-  }
-  bool allocate(cv::UMatData* data, cv::AccessFlag flags, cv::UMatUsageFlags usage) const override {
-    return base_->allocate(data, flags, usage);
-  }
-  void deallocate(cv::UMatData* data) const override { base_->deallocate(data); }
-
-private:
-  cv::MatAllocator* base_ = cv::Mat::getStdAllocator();
-};
 
 // cv::ORB::detectAndCompute makes about 290 a frame here.
 constexpr double kMaxAllocations = 11.0;
@@ -73,9 +23,7 @@ constexpr double kMaxAllocations = 11.0;
 // reach the largest size these frames need), the second is counted. Returns the allocations per
 // frame of the second pass; `moving` counts its frames judged moving.
 double allocationsPerFrame(const std::vector<cv::Mat>& frames, int& moving) {
-  static CountingMatAllocator counting;
-  cv::MatAllocator* const saved = cv::Mat::getDefaultAllocator();
-  cv::Mat::setDefaultAllocator(&counting);
+  const bench::MatBufferCount mat_buffers;
   cv::setNumThreads(1);
   const OrbExtractor extractor;  // the default mode at its 1000 features
   CameraMotion motion;
@@ -85,14 +33,13 @@ double allocationsPerFrame(const std::vector<cv::Mat>& frames, int& moving) {
   moving = 0;
   for (int pass = 0; pass < 2; ++pass) {
     motion.reset();
-    const long before = g_allocations.load();
+    const long before = bench::allocations();
     for (const cv::Mat& frame : frames) {
       extractor.extract(frame, motion, options, out);
       moving += pass == 1 && options.camera_moving;
     }
-    counted = g_allocations.load() - before;
+    counted = bench::allocations() - before;
   }
-  cv::Mat::setDefaultAllocator(saved);
   return static_cast<double>(counted) / static_cast<double>(frames.size());
 }
 
