@@ -1,6 +1,6 @@
-"""Turns the sequence files of enhanced_orb_compare (sequence_pose.csv, sequence_tracking.csv) into
-the real-camera-motion section of docs/RESULTS.md (between the sequence:begin and sequence:end
-markers) and its plot docs/results/sequence.png.
+"""Turns the sequence files of enhanced_orb_compare (sequence_pose.csv, sequence_tracking.csv,
+sequence_light.csv) into the real-camera-motion section of docs/RESULTS.md (between the
+sequence:begin and sequence:end markers) and its plot docs/results/sequence.png.
 
     python3 scripts/report.py sequence RESULTS_DIR [RESULTS_DIR ...] [--section NAME] [docs/RESULTS.md]
 
@@ -23,24 +23,19 @@ RIVALS = ["baseline", "paper", "cv::ORB", "CLAHE+cv::ORB", "ORB-SLAM"]  # what t
 COLOURS = {"default": "tab:red", "motion": "darkred", "stretch": "tab:pink", "paper": "tab:orange",
            "baseline": "tab:blue", "cv::ORB": "tab:gray", "CLAHE+cv::ORB": "tab:purple", "ORB-SLAM": "tab:green"}
 CONDITIONS = ["unchanged", "dim", "dark", "dusk", "lights_out", "flicker", "lamp", "dip"]
-LIGHT = {
-    "unchanged": "as recorded",
-    "dim": "x0.25, gain 2",
-    "dark": "x0.06, gain 4",
-    "dusk": "x1 to x0.05 over the sequence, auto gain",
-    "lights_out": "x0.1 from the middle on, auto gain catching up over ~10 frames",
-    "flicker": "alternate frames x1 and x0.5",
-    "lamp": "dark room (x0.03), lamp on the camera: bright centre",
-    "dip": "x0.02 from a third of the sequence to five sixths (frames {dip_from}-{dip_to} of {frames}), auto gain",
-}
 
 
-def light_text(condition, frames):
-    """How a light condition changes the light over a sequence of `frames` frames (sequence.cpp's
-    LightCondition: the dip's frames scale with the sequence, rounded half up)."""
-    half_up = lambda x: int(math.floor(x + 0.5))
-    return LIGHT.get(condition, "").format(dip_from=half_up(100 * frames / 300), dip_to=half_up(250 * frames / 300),
-                                           frames=frames)
+def light_descriptions(sources):
+    """What each light condition does to the frames, by condition: the sequence_light.csv that
+    enhanced_orb_compare writes beside the pose file (LightCondition::describe), first source first."""
+    light = {}
+    for src in sources:
+        path = os.path.join(src, "sequence_light.csv")
+        if os.path.exists(path):
+            with open(path) as f:
+                for r in csv.DictReader(f):
+                    light.setdefault(r["condition"], r["description"])
+    return light
 
 
 INTRO = """## Real camera motion: relative pose and stereo tracking in every light
@@ -331,6 +326,7 @@ def main(args):
             track_rows += list(csv.DictReader(open(track_path)))
     if not pose_rows:
         sys.exit("report sequence: no rows in " + " ".join(args))
+    light = light_descriptions(args)
 
     errors = collections.defaultdict(list)  # (condition, method, budget[, gap]) -> errors
     pair_errors = collections.defaultdict(dict)  # (condition, method, budget) -> {(frame, gap): error}
@@ -393,7 +389,8 @@ def main(args):
 
     intro = INTRO if section == "sequence" else DRIVING_INTRO + TRIED.get(sequence, "")
     out = [intro.format(sequence=sequence, frames=frames, gaps=", ".join(map(str, gaps)), losses=LOSSES,
-                        conditions="; ".join("`%s` %s" % (c, light_text(c, frames)) for c in conditions))]
+                        conditions="; ".join(" ".join(["`%s`" % c] + ([light[c]] if c in light else []))
+                                                   for c in conditions))]
 
     # The verdict at every budget: the default mode against the best rival, both measures.
     for b in budgets:

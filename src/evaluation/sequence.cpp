@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <opencv2/calib3d.hpp>
 
@@ -203,6 +204,35 @@ std::vector<int> defaultGaps(double rate_hz) {
   return gaps;
 }
 
+namespace {
+
+// The frames [first, end) the dip darkens: frames 100-249 of 300, scaled to the sequence.
+std::pair<int, int> dipFrames(int n_frames) {
+  const double scale = n_frames / 300.0;
+  return {static_cast<int>(std::lround(100 * scale)), static_cast<int>(std::lround(250 * scale))};
+}
+
+// The lamp's light on the scene: kLampEdge + kLampPeak at the image centre, falling off as a Gaussian
+// of kLampSigma x the image diagonal to kLampEdge (a dark room's light) at the edges.
+constexpr double kLampEdge = 0.03;
+constexpr double kLampPeak = 1.17;
+constexpr double kLampSigma = 0.18;
+
+constexpr double kMaxGain = 8.0;    // auto gain's cap
+constexpr double kGainRate = 0.25;  // of the way to the target gain per frame, in log
+
+std::string number(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+std::string factor(double x) {
+  return "x" + number(x);
+}
+
+}  // namespace
+
 double LightCondition::light(int frame, int n_frames) const {
   const double t = n_frames > 1 ? static_cast<double>(frame) / (n_frames - 1) : 0.0;
   if (name == "unchanged" || name == "lamp") {
@@ -218,8 +248,8 @@ double LightCondition::light(int frame, int n_frames) const {
   } else if (name == "flicker") {
     return frame % 2 == 0 ? 1.0 : 0.5;
   } else if (name == "dip") {
-    const double scale = n_frames / 300.0;
-    return frame >= std::lround(100 * scale) && frame < std::lround(250 * scale) ? 0.02 : 1.0;
+    const auto [first, end] = dipFrames(n_frames);
+    return frame >= first && frame < end ? 0.02 : 1.0;
   }
   throw std::invalid_argument("unknown light condition '" + name + "'");
 }
@@ -230,12 +260,10 @@ double LightCondition::gain(int frame, int n_frames) const {
   } else if (name == "dark") {
     return 4.0;
   } else if (name == "dusk" || name == "lights_out" || name == "dip") {
-    constexpr double kMaxGain = 8.0;
-    constexpr double kRate = 0.25;  // of the way to the target gain per frame, in log
     double g = std::clamp(1.0 / light(0, n_frames), 1.0, kMaxGain);
     for (int f = 1; f <= frame; ++f) {
       const double target = std::clamp(1.0 / light(f, n_frames), 1.0, kMaxGain);
-      g *= std::pow(target / g, kRate);
+      g *= std::pow(target / g, kGainRate);
     }
     return g;
   }
@@ -250,24 +278,50 @@ cv::Mat LightCondition::apply(const cv::Mat& gray, int frame, int n_frames, std:
   SensorModel sensor;
   sensor.gain = gain(frame, n_frames);
   if (name == "lamp") {
-    // A lamp beside the camera, pointing where it looks: the light on the scene falls off from the
-    // image centre (x1.2) to a dark room's x0.03 at the edges.
+    // A lamp beside the camera, pointing where it looks (kLampPeak, kLampEdge).
     thread_local cv::Mat field;
     if (field.size() != gray.size()) {
       field.create(gray.size(), CV_32F);
       const double cx = 0.5 * gray.cols, cy = 0.5 * gray.rows;
-      const double sigma = 0.18 * std::hypot(gray.cols, gray.rows);
+      const double sigma = kLampSigma * std::hypot(gray.cols, gray.rows);
       for (int y = 0; y < gray.rows; ++y) {
         float* row = field.ptr<float>(y);
         for (int x = 0; x < gray.cols; ++x) {
           const double r2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
-          row[x] = static_cast<float>(0.03 + 1.17 * std::exp(-r2 / (2.0 * sigma * sigma)));
+          row[x] = static_cast<float>(kLampEdge + kLampPeak * std::exp(-r2 / (2.0 * sigma * sigma)));
         }
       }
     }
     return lowLight(gray, field, 1.0, sensor, seed);
   }
   return lowLight(gray, cv::Mat(), light(frame, n_frames), sensor, seed);
+}
+
+std::string LightCondition::describe(int n_frames) const {
+  const int last = n_frames - 1;
+  const std::string of = " of " + std::to_string(n_frames);
+  const std::string auto_gain = ", auto gain (up to " + number(kMaxGain) + ")";
+  if (name == "unchanged") {
+    return "as recorded";
+  } else if (name == "dim" || name == "dark") {
+    return factor(light(0, n_frames)) + ", gain " + number(gain(0, n_frames));
+  } else if (name == "dusk") {
+    return factor(light(0, n_frames)) + " to " + factor(light(last, n_frames)) + " over the sequence" + auto_gain;
+  } else if (name == "lights_out") {
+    return factor(light(n_frames / 2, n_frames)) + " from frame " + std::to_string(n_frames / 2) + of + " on" +
+           auto_gain + ", catching up over ~10 frames";
+  } else if (name == "flicker") {
+    return "alternate frames " + factor(light(0, n_frames)) + " and " + factor(light(1, n_frames));
+  } else if (name == "lamp") {
+    return "a dark room (" + factor(kLampEdge) + ") lit by a lamp on the camera: " + factor(kLampEdge + kLampPeak) +
+           " at the centre";
+  } else if (name == "dip") {
+    const auto [first, end] = dipFrames(n_frames);
+    return factor(light(first, n_frames)) + " over frames " + std::to_string(first) + "-" + std::to_string(end - 1) +
+           of + auto_gain;
+  }
+  light(0, n_frames);  // rejects an unknown name
+  return name;
 }
 
 std::vector<LightCondition> lightConditions() {

@@ -57,7 +57,8 @@ Compares the extractors at equal budgets (matching: mutual Hamming nearest neigh
                      --pair-every 5 (photometric changes and pairs); --max-frames N uses N frames
 options:
   --output DIR       where to write lighting.csv, euroc_photometric.csv, euroc_pairs.csv,
-                     sequence_pose.csv, sequence_tracking.csv (default: results/compare)
+                     sequence_pose.csv, sequence_tracking.csv, sequence_light.csv
+                     (default: results/compare)
   --budgets LIST     feature budgets (default 500,1000,2000)
   --methods LIST     of default,motion,stretch,paper,baseline,cv::ORB,CLAHE+cv::ORB,ORB-SLAM
                      (default: all)
@@ -503,6 +504,15 @@ std::vector<PosePair> posePairs(const ev::Sequence& seq, int n, const std::vecto
   return pairs;
 }
 
+// `text` as one CSV field: in double quotes, each quote doubled (RFC 4180).
+std::string csvQuoted(const std::string& text) {
+  std::string field = "\"";
+  for (char ch : text) {
+    field += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  }
+  return field + "\"";
+}
+
 // One sequence_pose.csv row per pair: mutual matches, essential matrix (the median of pose_draws
 // RANSAC draws), error against the truth.
 std::vector<std::string> poseRows(const ev::Sequence& seq, const std::vector<PosePair>& pairs,
@@ -572,6 +582,12 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
   std::ostream& track_csv = track_file.out();
   track_csv << "sequence,condition,method,budget,frame,map_points,matches,inliers,tracked,rotation_deg,"
                "translation_m\n";
+  // What each condition does to these frames, for the report's legend.
+  ev::AtomicTextFile light_file((fs::path(o.output) / "sequence_light.csv").string());
+  light_file.out() << "sequence,condition,frames,description\n";
+  for (const ev::LightCondition& light : conditions) {
+    light_file.out() << seq.name << "," << light.name << "," << n << "," << csvQuoted(light.describe(n)) << "\n";
+  }
   for (size_t c = 0; c < conditions.size(); ++c) {
     const ev::LightCondition& light = conditions[c];
     std::vector<cv::Mat> dl, dr;
@@ -604,6 +620,7 @@ void compareSequence(const Options& o, const std::vector<Runner>& all) {
   }
   pose_file.commit();
   track_file.commit();
+  light_file.commit();
 }
 
 // Reads one option and its value into `o`; false with `error` set when the value is not valid.

@@ -1,5 +1,5 @@
-"""scripts/reports/sequence.py's description of the light conditions: the dip's frames as
-LightCondition::light() (src/evaluation/sequence.cpp) puts them, for the length of each sequence.
+"""scripts/reports/sequence.py's legend of the light conditions: the descriptions enhanced_orb_compare
+writes (sequence_light.csv, LightCondition::describe), read as written, the first folder's first.
 
 Run by scripts/test.sh with the Python module's tests: python3 -m pytest test/python.
 """
@@ -9,18 +9,27 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
 
-from reports.sequence import light_text  # noqa: E402
+from reports.sequence import light_descriptions  # noqa: E402
 
 
-def test_the_dip_spans_frames_100_to_250_of_300():
-    assert "(frames 100-250 of 300)" in light_text("dip", 300)
+def write_light(folder, rows):
+    folder.mkdir()
+    lines = ["sequence,condition,frames,description"] + ['s,%s,51,"%s"' % row for row in rows]
+    (folder / "sequence_light.csv").write_text("\n".join(lines) + "\n")
+    return str(folder)
 
 
-def test_the_dip_scales_with_a_short_sequence_rounding_half_up():
-    # 51 frames: 100 * 51 / 300 = 17, 250 * 51 / 300 = 42.5, rounded as std::lround does.
-    assert "(frames 17-43 of 51)" in light_text("dip", 51)
+def test_descriptions_with_commas_and_quotes_are_read_whole(tmp_path):
+    src = write_light(tmp_path / "a", [("dim", "x0.25, gain 2"), ("lamp", 'a ""lamp"", x1.2 at the centre')])
+    assert light_descriptions([src]) == {"dim": "x0.25, gain 2", "lamp": 'a "lamp", x1.2 at the centre'}
 
 
-def test_a_condition_without_frames_reads_as_written():
-    assert light_text("dim", 51) == "x0.25, gain 2"
-    assert light_text("unknown", 51) == ""
+def test_the_first_folder_describes_a_condition_both_describe(tmp_path):
+    first = write_light(tmp_path / "a", [("dip", "x0.02 over frames 17-42 of 51")])
+    second = write_light(tmp_path / "b", [("dip", "other"), ("dark", "x0.06, gain 4")])
+    assert light_descriptions([first, second]) == {"dip": "x0.02 over frames 17-42 of 51", "dark": "x0.06, gain 4"}
+
+
+def test_a_folder_without_descriptions_adds_none(tmp_path):
+    (tmp_path / "old").mkdir()
+    assert light_descriptions([str(tmp_path / "old")]) == {}

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
@@ -191,6 +193,31 @@ TEST(Sequence, LightConditionsOverASequence) {
   EXPECT_GT(cv::norm(a, ev::LightCondition{"dark"}.apply(frame, 5, n, 2), cv::NORM_INF), 0.0);
   EXPECT_THROW(ev::LightCondition{"eclipse"}.apply(frame, 0, n, 1), std::invalid_argument);
   EXPECT_EQ(ev::lightConditions().size(), 8u);
+}
+
+// The legend states the frames and factors light() and gain() use, for the sequence's own length.
+TEST(Sequence, LightConditionsDescribeTheFramesAndFactorsTheyApply) {
+  const ev::LightCondition dip{"dip"};
+  for (const auto& [n, first, last] : {std::tuple{300, 100, 249}, std::tuple{51, 17, 42}}) {
+    EXPECT_EQ(dip.light(first - 1, n), 1.0);
+    EXPECT_EQ(dip.light(first, n), 0.02);
+    EXPECT_EQ(dip.light(last, n), 0.02);
+    EXPECT_EQ(dip.light(last + 1, n), 1.0);
+    const std::string frames =
+        "frames " + std::to_string(first) + "-" + std::to_string(last) + " of " + std::to_string(n);
+    EXPECT_NE(dip.describe(n).find("x0.02 over " + frames), std::string::npos) << dip.describe(n);
+  }
+  const ev::LightCondition out{"lights_out"};
+  EXPECT_EQ(out.light(24, 51), 1.0);
+  EXPECT_EQ(out.light(25, 51), 0.1);
+  EXPECT_NE(out.describe(51).find("x0.1 from frame 25 of 51 on"), std::string::npos) << out.describe(51);
+  EXPECT_EQ(ev::LightCondition{"dim"}.describe(300), "x0.25, gain 2");
+  EXPECT_EQ(ev::LightCondition{"dark"}.describe(51), "x0.06, gain 4");
+  EXPECT_EQ(ev::LightCondition{"flicker"}.describe(51), "alternate frames x1 and x0.5");
+  EXPECT_NE(ev::LightCondition{"dusk"}.describe(51).find("x1 to x0.05 over the sequence"), std::string::npos);
+  EXPECT_NE(ev::LightCondition{"lamp"}.describe(51).find("(x0.03)"), std::string::npos);
+  EXPECT_EQ(ev::LightCondition{"unchanged"}.describe(51), "as recorded");
+  EXPECT_THROW(ev::LightCondition{"eclipse"}.describe(300), std::invalid_argument);
 }
 
 TEST(Sequence, StereoTrackingRecoversAKnownMotionAndFailsOnWrongMatches) {

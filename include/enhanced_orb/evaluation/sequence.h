@@ -58,7 +58,7 @@ std::vector<int> defaultGaps(double rate_hz);
 //               about 10 frames
 //   flicker     alternate frames at x1 and x0.5 (faster than any auto gain)
 //   lamp        a dark room (x0.03) lit by a lamp carried with the camera: bright centre, dark edges
-//   dip         x0.02 of the light over frames 100-250 (of 300; scaled to the sequence); auto gain
+//   dip         x0.02 of the light over frames 100-249 (of 300; scaled to the sequence); auto gain
 // Auto gain: the gain that would restore the light (1 / light), capped at 8; it moves a quarter of
 // the way (in log) towards it each frame.
 struct LightCondition {
@@ -68,6 +68,9 @@ struct LightCondition {
   // The light falling on the scene and the sensor gain at a frame.
   double light(int frame, int n_frames) const;
   double gain(int frame, int n_frames) const;
+  // What the condition does over a sequence of `n_frames` frames, in a line (the frames and factors
+  // light() and apply() use), e.g. for a report's legend.
+  std::string describe(int n_frames) const;
 };
 std::vector<LightCondition> lightConditions();
 
