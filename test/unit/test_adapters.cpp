@@ -246,16 +246,22 @@ TEST(OrbSlamExtractor, TakesTheOtherParametersFromAFileOrAPreset) {
   EXPECT_EQ(from_file.params().enhance.moving_gamma_mode, GammaMode::kAlways);
   EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().enhance.moving_gamma_mode, GammaMode::kAlways);
   EXPECT_EQ(Params().enhance.moving_gamma_mode, GammaMode::kNever);  // elsewhere the default mode's
+  // Its moving selection draws from every corner above the floor, as measured inside ORB-SLAM3,
+  // unless the file caps them; elsewhere the default mode caps them.
+  EXPECT_EQ(from_file.params().orb.floor_candidate_ratio, 0.0);
+  EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().orb.floor_candidate_ratio, 0.0);
+  EXPECT_GT(Params().orb.floor_candidate_ratio, 0.0);
   const std::string own = ::testing::TempDir() + "orb_slam_auto.yaml";
-  std::ofstream(own) << "preset: default\nmoving_gamma_mode: auto\nc_min: 9\n";
+  std::ofstream(own) << "preset: default\nmoving_gamma_mode: auto\nc_min: 9\nfloor_candidate_ratio: 12\n";
   setenv("ENHANCED_ORB_CONFIG", own.c_str(), 1);
   OrbSlamExtractor auto_file(1000, 1.2f, 8, 20, 7);
   unsetenv("ENHANCED_ORB_CONFIG");
   EXPECT_EQ(auto_file.params().enhance.moving_gamma_mode, GammaMode::kAuto);
+  EXPECT_EQ(auto_file.params().orb.floor_candidate_ratio, 12.0);
   EXPECT_EQ(auto_file.params().threshold.c_min, 7);  // minThFAST wins over the file
   std::vector<std::string> given;
   readParamsFile(own, Params(), &given);
-  EXPECT_EQ(given, (std::vector<std::string>{"moving_gamma_mode", "c_min"}));
+  EXPECT_EQ(given, (std::vector<std::string>{"moving_gamma_mode", "c_min", "floor_candidate_ratio"}));
   OrbSlamExtractor paper(1000, 1.2f, 8, 20, 7, Params::paper());
   EXPECT_EQ(paper.params().enhance.tone_curve, Params::paper().enhance.tone_curve);
   EXPECT_THROW(OrbSlamExtractor(1000, 1.2f, 8, 20, 0), std::invalid_argument);  // c_min below 1

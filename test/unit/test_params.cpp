@@ -374,7 +374,6 @@ TEST(Params, NoiseFloorIsAParameterLikeTheOthers) {
   EXPECT_TRUE(inactive(p, "noise_floor: only used with a budget"));
   // floor_candidate_ratio qualifies a noise floor: unused where no selection in use has one.
   p = Params();
-  EXPECT_EQ(p.orb.floor_candidate_ratio, 0.0);
   EXPECT_FALSE(inactive(p, "floor_candidate_ratio"));  // the moving selection's floor, 8
   p.orb.camera_motion = MotionMode::kStill;
   EXPECT_TRUE(inactive(p, "floor_candidate_ratio: only used with a noise floor"));
