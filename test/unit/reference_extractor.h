@@ -439,6 +439,9 @@ inline Extraction extract(const cv::Mat& gray, const Params& params) {
         for (const cv::KeyPoint& kp : level_keypoints[level]) {
           above += kp.response >= floor;
         }
+        if (orb.floor_candidate_ratio > 0.0) {  // at most that many times the budget of them
+          above = std::min(above, static_cast<size_t>(std::ceil(orb.floor_candidate_ratio * std::max(0, budget))));
+        }
         reference::keepStrongest(level_keypoints[level], std::max(above, static_cast<size_t>(std::max(0, budget))));
       } else if (orb.candidate_ratio > 0.0) {
         reference::keepStrongest(level_keypoints[level], static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
