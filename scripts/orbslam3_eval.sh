@@ -24,14 +24,15 @@
 # source tree to build into WORK when Pangolin is not installed; the viewer stays off),
 # START_EVERY and START_FRAMES (default 10 and 10: with "mono" in SENSORS, each build also starts
 # from every START_EVERY-th frame of each condition for START_FRAMES frames, to show how soon its
-# monocular map starts; START_EVERY=0 skips this), START_SEEDS (default "0": the seeds of the
+# monocular map starts; START_EVERY=0 skips this), START_SEEDS (default "1": the seeds of the
 # two-view RANSAC each start is run with, below).
 #
 # A monocular map starts from the first pair of frames whose two-view reconstruction passes
 # ORB-SLAM3's checks, and that reconstruction is a RANSAC whose seed ORB-SLAM3 fixes at 0: one run's
 # start is one draw, the same in every repeat. Both copies read that seed from ORBSLAM3_EVAL_SEED
-# instead (0 when unset, as shipped; nothing else changes), and repeat r of a run draws seed r - 1,
-# so that the repeats of a monocular run are three draws of its start, for both builds alike.
+# instead (0 when unset, as shipped; nothing else changes), and repeat r of a run draws seed r, so
+# that the repeats of a monocular run are three draws of its start, for both builds alike. glibc's
+# srand() takes 0 as 1: seed 1 is the start as shipped, and seeds 0 and 1 are one draw.
 #
 # ORB-SLAM3 is GPL-3: it is built and run here for evaluation only, in WORK; nothing of it enters
 # this repository. Time here (2 cores): about 70 minutes to build both copies, about 15 s per run
@@ -228,7 +229,7 @@ run_in() {  # DIR RUN SENSOR CONDITION SEED [FIRST COUNT]; RUN is "stock" or "en
     || echo "exit $?" >>log.txt; }) 2>/dev/null
   touch "$dir/done"
 }
-run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3" $(($4 - 1)); }  # RUN SENSOR CONDITION REPEAT
+run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3" "$4"; }  # RUN SENSOR CONDITION REPEAT
 RUNS="stock"
 for p in $PRESETS; do RUNS="$RUNS enhanced_orb-$p"; done
 total=0
@@ -249,18 +250,18 @@ done; done; done; done
 # condition and is given START_FRAMES frames from there: the frames in its trajectory (from the
 # pair that started the map on) show how soon the map starts, over many starts. One run per start
 # and seed of START_SEEDS: the start is decided by the tracking thread alone, the same way on the
-# same frames with the same seed. The runs of seed 0 are in starts/RUN/CONDITION/FIRST, of seed s
-# in FIRST.s.
+# same frames with the same seed. The runs of seed 1 (the start as shipped) are in
+# starts/RUN/CONDITION/FIRST, of seed s in FIRST.s.
 START_EVERY=${START_EVERY:-10}
 START_FRAMES=${START_FRAMES:-10}
-START_SEEDS=${START_SEEDS:-0}
+START_SEEDS=${START_SEEDS:-1}
 if [[ " $SENSORS " == *" mono "* ]] && ((START_EVERY > 0)); then
   n_frames=$(wc -l <"$WORK/frames/$(set -- $CONDITIONS; echo "$1")/times.txt")
   starts=$(seq 0 "$START_EVERY" $((n_frames - START_FRAMES)))
   log "monocular start: $(echo $starts | wc -w) starts of $START_FRAMES frames per build, condition and seed ($START_SEEDS)"
   for b in $RUNS; do for c in $CONDITIONS; do for f in $starts; do for seed in $START_SEEDS; do
     name=$f
-    [ "$seed" = 0 ] || name=$f.$seed
+    [ "$seed" = 1 ] || name=$f.$seed
     run_in "$WORK/starts/$b/$c/$name" "$b" mono "$c" "$seed" "$f" "$START_FRAMES"
   done; done; done; done
 fi

@@ -38,8 +38,8 @@ light condition of the sequence evaluation above, written as EuRoC folders by
 pace themselves. A monocular map starts from the first pair of frames whose two-view reconstruction
 passes ORB-SLAM3's checks (one clear solution, enough parallax), a RANSAC that ORB-SLAM3 seeds with
 0, so that every repeat of a run starts the same way: both copies here read that seed from
-`ORBSLAM3_EVAL_SEED` instead, and the three runs of a cell are seeds 0 (as shipped), 1 and 2, the
-same for every extractor (stereo does not use it). **frames tracked**: frames in ORB-SLAM3's
+`ORBSLAM3_EVAL_SEED` instead, and the three runs of a cell are seeds 1, 2 and 3, the same for every
+extractor (glibc's `srand` takes 0 as 1, so seed 1 is the start as shipped; stereo does not use it). **frames tracked**: frames in ORB-SLAM3's
 trajectory file, i.e. in its largest map and not lost, over the 300 given; **local map lost**: its
 "Fail to track local map!" events; **maps**: maps started (each after the first is a reset or a new map after tracking was lost);
 **ATE**: RMSE of the camera positions after alignment to the ground truth (T_WB T_BS of cam0).
@@ -171,9 +171,9 @@ def start_table(starts, builds):
             for times in runs:
                 n = len(times.read_text().split())
                 given.add(n)
-                first, _, seed = times.parent.name.partition(".")  # FIRST (seed 0) or FIRST.SEED
+                first, _, seed = times.parent.name.partition(".")  # FIRST (seed 1, as shipped) or FIRST.SEED
                 firsts.add(int(first))
-                seeds.add(int(seed or 0))
+                seeds.add(int(seed or 1))
                 trajectory = times.parent / "f_run.txt"
                 stamps = {line.split()[0] for line in trajectory.read_text().splitlines()
                           if len(line.split()) >= 8} if trajectory.exists() else set()
@@ -252,7 +252,7 @@ def main(args):
         drawn = ""
         if sensor == "mono" and len(seeds) > 1:
             drawn = (f", the two-view RANSAC that starts the map seeded {', '.join(map(str, seeds))} in turn "
-                     "(ORB-SLAM3 as shipped: 0)")
+                     "(ORB-SLAM3 as shipped: 0, which glibc's srand() takes as 1)")
         lines.append(f"\n{repeats} run(s) per cell{drawn}; tracked, local map lost and maps are means over them.\n")
     lines += start_table(runs.parent / "starts", builds)
     if doc:

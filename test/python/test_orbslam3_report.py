@@ -14,12 +14,12 @@ from reports import orbslam3  # noqa: E402
 FRAMES = 10
 
 
-def write_start(starts, build, condition, first, tracked, seed=0):
+def write_start(starts, build, condition, first, tracked, seed=1):
     """One start of FRAMES frames from `first` whose trajectory holds its last `tracked` frames (none:
     no trajectory file, as when ORB-SLAM3 never started a map), run with the two-view RANSAC's `seed`
-    (orbslam3_eval.sh, START_SEEDS: FIRST for seed 0, FIRST.SEED for another)."""
+    (orbslam3_eval.sh, START_SEEDS: FIRST for seed 1, FIRST.SEED for another)."""
     stamps = [1403636584763555584 + 50_000_000 * (first + i) for i in range(FRAMES)]
-    run = starts / build / condition / (str(first) if seed == 0 else f"{first}.{seed}")
+    run = starts / build / condition / (str(first) if seed == 1 else f"{first}.{seed}")
     run.mkdir(parents=True)
     (run / "times.txt").write_text("".join(f"{s}\n" for s in stamps))
     if tracked is not None:
@@ -48,8 +48,8 @@ def test_start_table_is_empty_without_starts(tmp_path):
 def test_start_table_counts_each_seed_of_a_start_as_a_run(tmp_path):
     starts = tmp_path / "starts"
     for first in (0, 10):
-        for seed, tracked in ((0, 9), (1, 5), (2, None)):
+        for seed, tracked in ((1, 9), (2, 5), (3, None)):
             write_start(starts, "stock", "lamp", first, tracked, seed)
     rows = orbslam3.start_table(starts, ["stock"])
-    assert "2 starts, every 10th frame, each with 3 seeds of the two-view RANSAC (0, 1, 2)" in rows[0]
+    assert "2 starts, every 10th frame, each with 3 seeds of the two-view RANSAC (1, 2, 3)" in rows[0]
     assert rows[3] == "| lamp | ORB-SLAM3's own | 4.67 | 2 of 6 | 2 of 6 |"
