@@ -10,9 +10,7 @@
 // the environment variable ENHANCED_ORB_CONFIG (readParamsFile(): a `preset` and/or parameters by
 // their ROS names, e.g. the package's config/motion.yaml) or, without it, the default mode; unless
 // the file sets moving_gamma_mode, a moving camera's frames all get the tone curve (always: a SLAM
-// map matches frames against points described under earlier light, docs/ORB_SLAM3.md), and unless it
-// sets floor_candidate_ratio, the moving selection draws from every corner above its floor (0, as
-// measured inside ORB-SLAM3). Each
+// map matches frames against points described under earlier light, docs/ORB_SLAM3.md). Each
 // extractor takes one camera's frames in order (as ORB-SLAM calls it), so camera_motion auto
 // judges from them whether the camera moves; the first frame counts as a moving camera's
 // (CameraMotion::Start::kMoving), as ORB-SLAM starts its map from the first frames of one.

@@ -48,12 +48,10 @@ trajectory file, i.e. in its largest map and not lost, over the 300 given; **loc
 in order whether the camera moves (the moving selection here from the first frame on: the adapter
 counts a stream's first frame as a moving camera's, and the second confirms it), with the tone curve
 on every frame of a moving camera (the adapter's `moving_gamma_mode: always`, since a SLAM map
-matches frames against points described under earlier light); **enhanced_orb auto** the same with
-`moving_gamma_mode: auto` (the curve only where the quality test calls the stream's last 5 frames
-poor; outside ORB-SLAM the default mode gives a moving camera's frames no curve, `never`, not run
-here; run as `PRESETS=auto` with `config/auto.yaml` =
-`config/default.yaml` plus that line); **enhanced_orb motion** `config/motion.yaml` (the moving
-selection without the judgment; the curve on every frame as in the default).
+matches frames against points described under earlier light; outside ORB-SLAM the default mode gives
+a moving camera's frames no curve, docs/ORB_SLAM3.md says why not here); **enhanced_orb motion**
+`config/motion.yaml` (the moving selection without the judgment; the curve on every frame as in the
+default). Another preset or parameter file runs as `PRESETS=<name>` with `config/<name>.yaml`.
 
 ```bash
 bash scripts/orbslam3_eval.sh ~/ORB_SLAM3 ~/ORB_SLAM3/Vocabulary/ORBvoc.txt \\

@@ -187,7 +187,7 @@ unchanged,lamp,dusk,lights_out,flicker,dip`) no cell moved by more than 0.016: u
 0.618 / 0.892 / 0.895 the same, the largest cost the dip on `straight_51` at 1000 (0.566 against
 0.571), every other cell within 0.002; from every third frame here, unchanged light at 500 / 1000 /
 2000 0.564 / 0.619 / 0.617 against 0.564 / 0.612 / 0.617 without the cap. **The default since** (`floor_candidate_ratio: 16`; the
-tables show it); the ORB-SLAM adapter keeps 0, as it was measured inside ORB-SLAM3.
+tables show it), in the ORB-SLAM adapter too ("Inside ORB-SLAM3" below).
 From every frame (`enhanced_orb_compare --sequence ../shared/data/euroc/MH_01_easy_moving
 --sequence-every 1 --conditions unchanged --methods default,baseline,paper,ORB-SLAM`; add `--set
 floor_candidate_ratio=8` for the cap) the tables' verdicts in unchanged light hold: at 1000 the

@@ -20,24 +20,15 @@ namespace {
 // a dip of the light ORB-SLAM3 then keeps tracking in one map, where the quality test's choice (auto,
 // made on the relative pose of nearby frames) loses it (docs/RESULTS.md, "Inside ORB-SLAM3").
 constexpr GammaMode kSlamMovingGammaMode = GammaMode::kAlways;
-// The moving selection's corners above the noise floor uncapped, as every run inside ORB-SLAM3 was
-// measured (docs/ORB_SLAM3.md); the default mode's cap (16 x budget) is measured on relative pose
-// only, where at ORB-SLAM's budgets (1000-1200 a frame, 5000 to initialise) it seldom binds.
-constexpr double kSlamFloorCandidateRatio = 0.0;
 
 // The five-argument constructor's other parameters: the file ENHANCED_ORB_CONFIG names, or the
-// default mode; moving_gamma_mode kSlamMovingGammaMode and floor_candidate_ratio
-// kSlamFloorCandidateRatio unless the file sets them.
+// default mode; moving_gamma_mode kSlamMovingGammaMode unless the file sets it.
 Params configuredBase() {
   const char* path = std::getenv("ENHANCED_ORB_CONFIG");
   std::vector<std::string> given;
   Params params = path && *path ? readParamsFile(path, Params(), &given) : Params();
-  auto unset = [&given](const char* name) { return std::find(given.begin(), given.end(), name) == given.end(); };
-  if (unset("moving_gamma_mode")) {
+  if (std::find(given.begin(), given.end(), "moving_gamma_mode") == given.end()) {
     params.enhance.moving_gamma_mode = kSlamMovingGammaMode;
-  }
-  if (unset("floor_candidate_ratio")) {
-    params.orb.floor_candidate_ratio = kSlamFloorCandidateRatio;
   }
   return params;
 }

@@ -246,11 +246,10 @@ TEST(OrbSlamExtractor, TakesTheOtherParametersFromAFileOrAPreset) {
   EXPECT_EQ(from_file.params().enhance.moving_gamma_mode, GammaMode::kAlways);
   EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().enhance.moving_gamma_mode, GammaMode::kAlways);
   EXPECT_EQ(Params().enhance.moving_gamma_mode, GammaMode::kNever);  // elsewhere the default mode's
-  // Its moving selection draws from every corner above the floor, as measured inside ORB-SLAM3,
-  // unless the file caps them; elsewhere the default mode caps them.
-  EXPECT_EQ(from_file.params().orb.floor_candidate_ratio, 0.0);
-  EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().orb.floor_candidate_ratio, 0.0);
-  EXPECT_GT(Params().orb.floor_candidate_ratio, 0.0);
+  // The moving selection's cap on the corners above the floor is the preset's, unless the file sets it.
+  EXPECT_EQ(from_file.params().orb.floor_candidate_ratio, Params::motion().orb.floor_candidate_ratio);
+  EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().orb.floor_candidate_ratio,
+            Params().orb.floor_candidate_ratio);
   const std::string own = ::testing::TempDir() + "orb_slam_auto.yaml";
   std::ofstream(own) << "preset: default\nmoving_gamma_mode: auto\nc_min: 9\nfloor_candidate_ratio: 12\n";
   setenv("ENHANCED_ORB_CONFIG", own.c_str(), 1);
