@@ -430,19 +430,21 @@ inline Extraction extract(const cv::Mat& gray, const Params& params) {
   out.cell_thresholds = out.level_thresholds.front();
   if (orb.max_features > 0) {
     const std::vector<int> budgets = reference::budgets(orb.max_features, orb.n_levels, orb.scale_factor);
+    // The frame's noise floor: one noise estimate of the image the corners are found on.
+    const double floor = orb.noise_floor > 0.0 ? orb.noise_floor * reference::noise(out.image) : 0.0;
     int carry = 0;
     for (int level = 0; level < n_levels; ++level) {
       const int budget = budgets[level] + carry;
       if (orb.noise_floor > 0.0) {
-        const double floor = orb.noise_floor * reference::noise(out.image);
+        const size_t share = static_cast<size_t>(std::max(0, budget));
         size_t above = 0;
         for (const cv::KeyPoint& kp : level_keypoints[level]) {
           above += kp.response >= floor;
         }
         if (orb.floor_candidate_ratio > 0.0) {  // at most that many times the budget of them
-          above = std::min(above, static_cast<size_t>(std::ceil(orb.floor_candidate_ratio * std::max(0, budget))));
+          above = std::min(above, static_cast<size_t>(std::ceil(orb.floor_candidate_ratio * share)));
         }
-        reference::keepStrongest(level_keypoints[level], std::max(above, static_cast<size_t>(std::max(0, budget))));
+        reference::keepStrongest(level_keypoints[level], std::max(above, share));
       } else if (orb.candidate_ratio > 0.0) {
         reference::keepStrongest(level_keypoints[level], static_cast<size_t>(std::ceil(orb.candidate_ratio * budget)));
       }

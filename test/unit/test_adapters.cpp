@@ -250,6 +250,7 @@ TEST(OrbSlamExtractor, TakesTheOtherParametersFromAFileOrAPreset) {
   EXPECT_EQ(from_file.params().orb.floor_candidate_ratio, Params::motion().orb.floor_candidate_ratio);
   EXPECT_EQ(OrbSlamExtractor(1000, 1.2f, 8, 20, 7).params().orb.floor_candidate_ratio,
             Params().orb.floor_candidate_ratio);
+  EXPECT_GT(Params().orb.floor_candidate_ratio, 0.0);  // and the default mode caps them
   const std::string own = ::testing::TempDir() + "orb_slam_auto.yaml";
   std::ofstream(own) << "preset: default\nmoving_gamma_mode: auto\nc_min: 9\nfloor_candidate_ratio: 12\n";
   setenv("ENHANCED_ORB_CONFIG", own.c_str(), 1);
