@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) from the shared data: the
-# equal-budget comparison (lighting pairs and EuRoC), real camera motion (the EuRoC moving sequence
-# and the KITTI driving excerpts), the paper's evaluation (Tables 2-4, Figures 6-7), the
-# benchmarks, the nodelet chain's figures and the aarch64 test run.
+# Regenerates docs/RESULTS.md, its CSV files and plots (docs/results/) and README's pose summary
+# from the shared data: the equal-budget comparison (lighting pairs and EuRoC), real camera motion
+# (the EuRoC moving sequence and the KITTI driving excerpts), the paper's evaluation (Tables 2-4,
+# Figures 6-7), the benchmarks, the nodelet chain's figures and the aarch64 test run.
 #
 #   bash scripts/results.sh [EUROC_ASL_DIR [LIGHTING_DIR [MOVING_SEQUENCE_DIR]]]
 #   defaults ../shared/data/euroc/V1_01_easy_micro, ../shared/data/lighting and
@@ -102,5 +102,6 @@ python3 "$ROOT/scripts/report.py" sequence "${SEQUENCES[@]}" "$ROOT/docs/RESULTS
 for name in "${DRIVING[@]}"; do
   python3 "$ROOT/scripts/report.py" sequence "$COMPARE/driving_$name" --section "driving_$name" "$ROOT/docs/RESULTS.md"
 done
+python3 "$ROOT/scripts/report.py" glance "$ROOT/docs/RESULTS.md" "$ROOT/README.md"
 python3 "$ROOT/scripts/report.py" aarch64 "$ROOT/build_aarch64/test_results" "$ROOT/docs/RESULTS.md"
 echo "results: done in $(( $(date +%s) - start )) s"

@@ -14,8 +14,8 @@ export ENHANCED_ORB_REQUIRE_DATA=1
 rm -rf "$ROOT/build/test_results"
 make -C "$ROOT/build" run_tests -j1 >"$ROOT/build/run_tests.log" 2>&1
 # The Python module (test/python), from the devel space, against the C++ adapter; beside it the
-# ORB-SLAM3 report's start table (test_orbslam3_report.py) and the sequence tables' loss intervals
-# (test_report_intervals.py).
+# ORB-SLAM3 report's start table (test_orbslam3_report.py), the sequence tables' loss intervals
+# (test_report_intervals.py) and README's pose summary (test_report_glance.py).
 (set +u && source "$ROOT/devel/setup.bash" && cd "$ROOT" && python3 -m pytest -q -p no:cacheprovider test/python \
   --junitxml="$ROOT/build/test_results/enhanced_orb/pytest-python.xml") >"$ROOT/build/pytest.log" 2>&1 \
   || tail -n 30 "$ROOT/build/pytest.log"
