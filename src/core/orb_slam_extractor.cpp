@@ -17,8 +17,9 @@ namespace {
 
 // A SLAM map matches each frame against points described from frames under earlier light, so in
 // ORB-SLAM a moving camera's frames all get the tone curve, whatever their quality test says: through
-// a dip of the light ORB-SLAM3 then keeps tracking in one map, where the quality test's choice (auto,
-// made on the relative pose of nearby frames) loses it (docs/RESULTS.md, "Inside ORB-SLAM3").
+// a dip of the light ORB-SLAM3 then keeps tracking in one map, where the quality test's choice (auto)
+// and no curve (never, what relative pose between nearby frames prefers) lose it (docs/ORB_SLAM3.md,
+// "What the two SLAM choices buy").
 constexpr GammaMode kSlamMovingGammaMode = GammaMode::kAlways;
 
 // The five-argument constructor's other parameters: the file ENHANCED_ORB_CONFIG names, or the
