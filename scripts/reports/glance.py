@@ -73,7 +73,10 @@ def summary(results_text):
                         ratio_cell(unchanged[0][1], "loses" in unchanged[0][2]) if unchanged else "-",
                         "%s to %s" % (ratio_cell(low[1], "loses" in low[2]), ratio_cell(high[1], False)),
                         "; ".join(losses) if losses else "none"])
-    return table(["sequence", "features", "unchanged light", "the changes of light", "loses (interval)"], out)
+    lines = table(["sequence", "features", "unchanged light", "the changes of light", "loses (interval)"],
+                  out).split("\n")
+    lines[1] = "| --- | ---: | ---: | ---: | --- |"  # the losses are words: left-aligned
+    return "\n".join(lines)
 
 
 def main(args):
