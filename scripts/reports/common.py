@@ -4,8 +4,11 @@ import pathlib
 import random
 
 
-def table(header, rows):
-    out = ["| " + " | ".join(header) + " |", "| " + " | ".join(["---"] + ["---:"] * (len(header) - 1)) + " |"]
+def table(header, rows, align=None):
+    """A markdown table; `align` one letter per column, l or r (default: the first column l, the
+    rest, numbers, r)."""
+    align = align or "l" + "r" * (len(header) - 1)
+    out = ["| " + " | ".join(header) + " |", "| " + " | ".join("---:" if a == "r" else "---" for a in align) + " |"]
     out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
     return "\n".join(out)
 
@@ -57,12 +60,24 @@ def auc_difference_interval(errors_a, errors_b, threshold, block, draws=1000, le
     return low, high
 
 
+def markers(name):
+    return "<!-- %s:begin -->" % name, "<!-- %s:end -->" % name
+
+
+def read_section(text, name):
+    """The text between <!-- name:begin --> and <!-- name:end --> of `text`; ValueError without them."""
+    begin, end = markers(name)
+    if begin not in text or end not in text:
+        raise ValueError("no section %s" % name)
+    return text[text.index(begin) + len(begin):text.index(end)]
+
+
 def write_section(doc, name, body):
     """Replaces the text between <!-- name:begin --> and <!-- name:end --> of `doc` with `body`
     (the markers kept), or appends the marked section when the markers are missing."""
     path = pathlib.Path(doc)
     text = path.read_text() if path.exists() else ""
-    begin, end = "<!-- %s:begin -->" % name, "<!-- %s:end -->" % name
+    begin, end = markers(name)
     section = begin + "\n" + body.rstrip("\n") + "\n" + end
     if begin in text and end in text:
         text = text[:text.index(begin)] + section + text[text.index(end) + len(end):]

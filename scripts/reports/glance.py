@@ -8,7 +8,7 @@ tables the sequence report wrote, so that README and RESULTS.md cannot disagree.
 import pathlib
 import re
 
-from reports.common import table, write_section
+from reports.common import read_section, table, write_section
 
 # The sections of RESULTS.md, in README's order: (marker, how README names the sequence).
 SECTIONS = [("sequence", "EuRoC `MH_01_easy_moving`, indoor, 20 Hz"),
@@ -19,16 +19,10 @@ COLUMN = "default / best rival"
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-def section_text(text, name):
-    begin, end = "<!-- %s:begin -->" % name, "<!-- %s:end -->" % name
-    if begin not in text or end not in text:
-        raise ValueError("no section %s" % name)
-    return text[text.index(begin) + len(begin):text.index(end)]
-
-
 def pose_rows(section):
-    """{budget: [(light, ratio, cell)]} from a section's "N features: pose AUC@10" tables: the
-    ratio of the default mode's AUC@10 to the best rival's and that table cell as written."""
+    """{budget: [(light, ratio, loss)]} from a section's "N features: pose AUC@10" tables: the
+    ratio of the default mode's AUC@10 to the best rival's, and where the table says it loses the
+    loss's interval as written ("" without one), else None."""
     rows, budget, column = {}, None, None
     for line in section.splitlines():
         heading = re.match(r"### (\d+) features: pose AUC@10", line)
@@ -46,7 +40,9 @@ def pose_rows(section):
             ratio = re.search(r"([0-9.]+)x", cells[column])
             if ratio is None:
                 raise ValueError("no ratio in %r" % line)
-            rows.setdefault(budget, []).append((cells[0].split()[0], float(ratio.group(1)), cells[column]))
+            loss = re.search(r"loses(?:; ([^)]*))?", cells[column])
+            rows.setdefault(budget, []).append((cells[0].split()[0], float(ratio.group(1)),
+                                                None if loss is None else loss.group(1) or ""))
     return rows
 
 
@@ -58,25 +54,22 @@ def summary(results_text):
     """README's table from the text of RESULTS.md."""
     out = []
     for name, label in SECTIONS:
-        rows = pose_rows(section_text(results_text, name))
+        rows = pose_rows(read_section(results_text, name))
         if not rows:
             raise ValueError("no pose AUC@10 tables in section %s" % name)
         for budget in sorted(rows):
             lights = rows[budget]
             unchanged = [r for r in lights if r[0] == "unchanged"]
             changed = [r for r in lights if r[0] != "unchanged"]
-            losses = ["%s (%s)" % (light, cell.split("loses; ")[1].rstrip(")")) if "loses; " in cell else light
-                      for light, _, cell in lights if "loses" in cell]
+            losses = ["%s (%s)" % (light, loss) if loss else light for light, _, loss in lights if loss is not None]
             low = min(changed, key=lambda r: r[1])
             high = max(changed, key=lambda r: r[1])
             out.append([label, budget,
-                        ratio_cell(unchanged[0][1], "loses" in unchanged[0][2]) if unchanged else "-",
-                        "%s to %s" % (ratio_cell(low[1], "loses" in low[2]), ratio_cell(high[1], False)),
+                        ratio_cell(unchanged[0][1], unchanged[0][2] is not None) if unchanged else "-",
+                        "%s to %s" % (ratio_cell(low[1], low[2] is not None), ratio_cell(high[1], high[2] is not None)),
                         "; ".join(losses) if losses else "none"])
-    lines = table(["sequence", "features", "unchanged light", "the changes of light", "loses (interval)"],
-                  out).split("\n")
-    lines[1] = "| --- | ---: | ---: | ---: | --- |"  # the losses are words: left-aligned
-    return "\n".join(lines)
+    return table(["sequence", "features", "unchanged light", "the changes of light", "loses (interval)"], out,
+                 align="lrrrl")
 
 
 def main(args):

@@ -62,6 +62,6 @@ def test_a_missing_section_or_table_is_an_error():
 
 def test_readme_shows_what_results_gives():
     readme = (ROOT / "README.md").read_text()
-    shown = glance.section_text(readme, "glance").strip()
+    shown = glance.read_section(readme, "glance").strip()
     assert shown == glance.summary((ROOT / "docs" / "RESULTS.md").read_text()).strip(), \
         "README's summary differs from docs/RESULTS.md: python3 scripts/report.py glance"
