@@ -39,6 +39,16 @@ protected:
     spinner_.start();
   }
 
+  // The spinner's threads run this fixture's callbacks, which write its maps: they are joined, and
+  // the subscriptions closed, before any member is destroyed (a message still arriving from the
+  // chain would otherwise be recorded into a map already gone).
+  void TearDown() override {
+    spinner_.stop();
+    for (ros::Subscriber* sub : {&published_sub_, &received_sub_, &probe_sub_, &keypoints_sub_}) {
+      sub->shutdown();
+    }
+  }
+
   // Addresses by image stamp [ns]: as the enhancer published, as the extractor received, and as
   // this process's own subscriber received. A stamp can be published more than once (an input
   // frame delivered to the enhancer twice), so each stamp keeps every address it was seen at.
