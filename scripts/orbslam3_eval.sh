@@ -17,7 +17,9 @@
 #   WORK        scratch folder for the builds, frames and runs (default /tmp/enhanced_orb_orbslam3);
 #               builds are kept, so a second run only runs
 #
-# Environment: REPEATS (default 3; ORB-SLAM3 is multi-threaded and not deterministic),
+# Environment: REPEATS (default 3: stereo runs per cell; ORB-SLAM3 is multi-threaded and not
+# deterministic), MONO_REPEATS (default twice REPEATS: monocular runs per cell, each a draw of the
+# start, below; three draws were seen to rank two starts either way),
 # CONDITIONS (default: every condition of the sequence evaluation), SENSORS (default "stereo mono"),
 # PRESETS (default "default motion": the adapted build runs once per preset, through
 # ENHANCED_ORB_CONFIG=config/<preset>.yaml, docs/ORB_SLAM3.md), PANGOLIN_SRC (a Pangolin v0.6
@@ -31,12 +33,12 @@
 # ORB-SLAM3's checks, and that reconstruction is a RANSAC whose seed ORB-SLAM3 fixes at 0: one run's
 # start is one draw, the same in every repeat. Both copies read that seed from ORBSLAM3_EVAL_SEED
 # instead (0 when unset, as shipped; nothing else changes), and repeat r of a run draws seed r, so
-# that the repeats of a monocular run are three draws of its start, for both builds alike. glibc's
+# that the repeats of a monocular run are draws of its start, for both builds alike. glibc's
 # srand() takes 0 as 1: seed 1 is the start as shipped, and seeds 0 and 1 are one draw.
 #
 # ORB-SLAM3 is GPL-3: it is built and run here for evaluation only, in WORK; nothing of it enters
 # this repository. Time here (2 cores): about 70 minutes to build both copies, about 15 s per run
-# (144 runs with the default three repeats and two presets), about 1.5 s per monocular start (720).
+# (216 runs with the default repeats and two presets), about 1.5 s per monocular start (720).
 set -euo pipefail
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -49,6 +51,7 @@ VOCABULARY=$(realpath "$2")
 DATA=$(realpath "$3")
 WORK=$(realpath -m "${4:-/tmp/enhanced_orb_orbslam3}")
 REPEATS=${REPEATS:-3}
+MONO_REPEATS=${MONO_REPEATS:-$((2 * REPEATS))}
 SENSORS=${SENSORS:-stereo mono}
 PRESETS=${PRESETS:-default motion}
 for p in $PRESETS; do
@@ -232,16 +235,22 @@ run_in() {  # DIR RUN SENSOR CONDITION SEED [FIRST COUNT]; RUN is "stock" or "en
 run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3" "$4"; }  # RUN SENSOR CONDITION REPEAT
 RUNS="stock"
 for p in $PRESETS; do RUNS="$RUNS enhanced_orb-$p"; done
+repeats_of() { if [ "$1" = mono ]; then echo "$MONO_REPEATS"; else echo "$REPEATS"; fi; }  # SENSOR
+most=0
 total=0
-for b in $RUNS; do for s in $SENSORS; do for c in $CONDITIONS; do for r in $(seq 1 "$REPEATS"); do
-  total=$((total + 1))
-done; done; done; done
+for s in $SENSORS; do
+  ((most = $(repeats_of "$s") > most ? $(repeats_of "$s") : most))
+  total=$((total + $(repeats_of "$s") * $(wc -w <<<"$CONDITIONS") * $(wc -w <<<"$RUNS")))
+done
 n=0
-for r in $(seq 1 "$REPEATS"); do for c in $CONDITIONS; do for s in $SENSORS; do for b in $RUNS; do
-  n=$((n + 1))
-  log "run $n/$total: $b $s $c #$r"
-  run_one "$b" "$s" "$c" "$r"
-done; done; done; done
+for r in $(seq 1 "$most"); do for c in $CONDITIONS; do for s in $SENSORS; do
+  ((r <= $(repeats_of "$s"))) || continue
+  for b in $RUNS; do
+    n=$((n + 1))
+    log "run $n/$total: $b $s $c #$r"
+    run_one "$b" "$s" "$c" "$r"
+  done
+done; done; done
 
 # --- the monocular start ---------------------------------------------------------------------------
 # A monocular map starts from the first pair of frames whose two-view reconstruction ORB-SLAM3
