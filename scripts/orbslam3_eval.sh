@@ -236,14 +236,10 @@ run_one() { run_in "$WORK/runs/$1/$2/$3/$4" "$1" "$2" "$3" "$4"; }  # RUN SENSOR
 RUNS="stock"
 for p in $PRESETS; do RUNS="$RUNS enhanced_orb-$p"; done
 repeats_of() { if [ "$1" = mono ]; then echo "$MONO_REPEATS"; else echo "$REPEATS"; fi; }  # SENSOR
-most=0
 total=0
-for s in $SENSORS; do
-  ((most = $(repeats_of "$s") > most ? $(repeats_of "$s") : most))
-  total=$((total + $(repeats_of "$s") * $(wc -w <<<"$CONDITIONS") * $(wc -w <<<"$RUNS")))
-done
+for s in $SENSORS; do total=$((total + $(repeats_of "$s") * $(wc -w <<<"$CONDITIONS") * $(wc -w <<<"$RUNS"))); done
 n=0
-for r in $(seq 1 "$most"); do for c in $CONDITIONS; do for s in $SENSORS; do
+for r in $(seq 1 $((MONO_REPEATS > REPEATS ? MONO_REPEATS : REPEATS))); do for c in $CONDITIONS; do for s in $SENSORS; do
   ((r <= $(repeats_of "$s"))) || continue
   for b in $RUNS; do
     n=$((n + 1))

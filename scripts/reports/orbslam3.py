@@ -38,10 +38,11 @@ light condition of the sequence evaluation above, written as EuRoC folders by
 pace themselves. A monocular map starts from the first pair of frames whose two-view reconstruction
 passes ORB-SLAM3's checks (one clear solution, enough parallax), a RANSAC that ORB-SLAM3 seeds with
 0, so that every repeat of a run starts the same way: both copies here read that seed from
-`ORBSLAM3_EVAL_SEED` instead, and the monocular runs of a cell (six: three draws were seen to rank
-two starts either way) are seeds 1 to 6, the same for every extractor (glibc's `srand` takes 0 as
-1, so seed 1 is the start as shipped; stereo, three runs a cell, does not use it). **frames
-tracked**: frames in ORB-SLAM3's trajectory file, i.e. in its largest map and not lost, over the 300 given; **local map lost**: its
+`ORBSLAM3_EVAL_SEED` instead, and the monocular runs of a cell (twice the stereo runs by default:
+three draws were seen to rank two starts either way) are seeds 1, 2, 3 and on, the same for every
+extractor (glibc's `srand` takes 0 as 1, so seed 1 is the start as shipped; stereo does not use
+it). **frames tracked**: frames in ORB-SLAM3's trajectory file, i.e. in its largest map and not
+lost, over the 300 given; **local map lost**: its
 "Fail to track local map!" events; **maps**: maps started (each after the first is a reset or a new map after tracking was lost);
 **ATE**: RMSE of the camera positions after alignment to the ground truth (T_WB T_BS of cam0).
 **enhanced_orb default** is the adapter as a user gets it (no `ENHANCED_ORB_CONFIG`, or
